@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Common vocabulary of the ASM core: plain C++17, no VTK types.
+ *
+ * The core works on a point cloud given as N x 3 doubles (x0 y0 z0 x1 ...)
+ * and a list of the point ids to use (the finite ones). Parallel loops and
+ * progress reporting are injected by the caller (vtkSMPTools and
+ * vtkAlgorithm::UpdateProgress in the VTK filters, plain loops in tests), so
+ * the geometry can be tested on its own.
+ */
+#ifndef asm_core_Common_h
+#define asm_core_Common_h
+
+#include "vtkASMFiltersModule.h" // For export macro
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace asmcore
+{
+/// Point and cell index type: 64-bit end to end.
+using Index = std::int64_t;
+
+/// Runs body(b, e) over sub-ranges covering [begin, end); may run them
+/// concurrently. Results must not depend on how the range is cut.
+using ParallelFor =
+  std::function<void(Index begin, Index end, const std::function<void(Index, Index)>& body)>;
+
+/// Called with the fraction of work done, in [0, 1]; returns true to abort.
+using ProgressCallback = std::function<bool(double)>;
+
+/// How the caller runs the core's loops.
+struct Execution
+{
+  ParallelFor For;           ///< empty: sequential
+  ProgressCallback Progress; ///< empty: no reports, never aborts
+
+  void Run(Index begin, Index end, const std::function<void(Index, Index)>& body) const
+  {
+    if (begin >= end)
+    {
+      return;
+    }
+    if (this->For)
+    {
+      this->For(begin, end, body);
+    }
+    else
+    {
+      body(begin, end);
+    }
+  }
+  bool Report(double fraction) const { return this->Progress ? this->Progress(fraction) : false; }
+};
+
+/// Ids of the points whose three coordinates are finite.
+VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);
+
+/// SplitMix64: a small, portable, well-mixed 64-bit generator. Used for the
+/// per-cell random choices so that results do not depend on the thread that
+/// processes a cell.
+class SplitMix64
+{
+public:
+  explicit SplitMix64(std::uint64_t seed)
+    : State(seed)
+  {
+  }
+  std::uint64_t Next()
+  {
+    std::uint64_t z = (this->State += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  /// Uniform integer in [0, bound), bound > 0.
+  std::uint64_t Below(std::uint64_t bound)
+  {
+    // Rejection sampling keeps the draw unbiased.
+    const std::uint64_t limit = ~std::uint64_t(0) - (~std::uint64_t(0) % bound);
+    std::uint64_t r;
+    do
+    {
+      r = this->Next();
+    } while (r >= limit);
+    return r % bound;
+  }
+
+private:
+  std::uint64_t State;
+};
+} // namespace asmcore
+
+#endif

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Grid hashing (paper §3.5 step 1): a uniform grid of cubic cells, the points
+ * sorted by cell, and the automatic choice of the cell size.
+ */
+#ifndef asm_core_Grid_h
+#define asm_core_Grid_h
+
+#include "Common.h"
+
+namespace asmcore
+{
+/// Axis-aligned bounds of a set of points.
+struct VTKASMFILTERS_EXPORT Bounds
+{
+  double Min[3] = { 0, 0, 0 };
+  double Max[3] = { 0, 0, 0 };
+  bool Valid = false; ///< false for an empty set
+
+  double Extent(int axis) const { return this->Max[axis] - this->Min[axis]; }
+  double Diagonal() const;
+  double MaxExtent() const;
+};
+
+/// Bounds of the points xyz[3*id] for id in ids.
+VTKASMFILTERS_EXPORT Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids);
+
+/// A uniform grid: origin, cubic cell edge, and the number of cells per axis.
+struct VTKASMFILTERS_EXPORT GridSpec
+{
+  double Origin[3] = { 0, 0, 0 };
+  double CellSize = 1.0;
+  std::int64_t Dims[3] = { 1, 1, 1 };
+
+  /// Largest number of cells per axis: keys pack three 21-bit indices.
+  static constexpr std::int64_t MaxDim = std::int64_t(1) << 21;
+
+  /// A grid covering `bounds` with cells of edge `cellSize`. A cell size too
+  /// small for MaxDim cells per axis (or not positive) is enlarged.
+  static GridSpec Make(const Bounds& bounds, double cellSize);
+
+  /// Packed key (z << 42 | y << 21 | x) of the cell holding p; points
+  /// outside the grid are clamped to its border cells.
+  std::uint64_t KeyOf(const double p[3]) const;
+  /// The integer cell coordinates of a key.
+  void Unpack(std::uint64_t key, std::int64_t ijk[3]) const;
+};
+
+/// The points of a cloud grouped by grid cell.
+struct VTKASMFILTERS_EXPORT CellGrid
+{
+  GridSpec Spec;
+  std::vector<Index> Order;          ///< point ids sorted by (cell key, id)
+  std::vector<Index> CellStart;      ///< cell c holds Order[CellStart[c], CellStart[c+1])
+  std::vector<std::uint64_t> CellKey; ///< key of each non-empty cell, ascending
+
+  Index NumberOfCells() const { return static_cast<Index>(this->CellKey.size()); }
+  Index CellSizeOf(Index c) const { return this->CellStart[c + 1] - this->CellStart[c]; }
+  const Index* CellPoints(Index c) const { return this->Order.data() + this->CellStart[c]; }
+};
+
+/// Hash the points into the grid `spec` (deterministic: ties by point id).
+VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec);
+
+/// Number of non-empty cells of `spec`.
+VTKASMFILTERS_EXPORT Index CountOccupiedCells(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec);
+
+/// The cell edge for which about `targetCells` cells are non-empty. Searches
+/// in log(cell size) with the measured occupancy, a few passes over the data.
+VTKASMFILTERS_EXPORT double AutomaticCellSize(
+  const double* xyz, const std::vector<Index>& ids, const Bounds& bounds, double targetCells);
+} // namespace asmcore
+
+#endif

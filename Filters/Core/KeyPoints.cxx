@@ -1,0 +1,369 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "KeyPoints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+namespace asmcore
+{
+Eigen::Vector3d Centroid(const LocalPoints& q, const Index* first, const Index* last)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Index* it = first; it != last; ++it)
+  {
+    sum += q[*it];
+  }
+  const auto n = static_cast<double>(last - first);
+  return n > 0 ? Eigen::Vector3d(sum / n) : sum;
+}
+
+Index NearestMember(
+  const LocalPoints& q, const Index* first, const Index* last, const Eigen::Vector3d& target)
+{
+  Index best = -1;
+  double bestDist = std::numeric_limits<double>::infinity();
+  for (const Index* it = first; it != last; ++it)
+  {
+    const double d = (q[*it] - target).squaredNorm();
+    if (d < bestDist || (d == bestDist && *it < best))
+    {
+      bestDist = d;
+      best = *it;
+    }
+  }
+  return best;
+}
+
+Eigen::Vector3d Representative(const LocalPoints& q, const Index* first, const Index* last, bool snap)
+{
+  const Eigen::Vector3d c = Centroid(q, first, last);
+  return snap ? q[NearestMember(q, first, last, c)] : c;
+}
+
+namespace
+{
+// Union-find with path halving over positions 0..n-1.
+struct DisjointSets
+{
+  std::vector<Index> Parent;
+  explicit DisjointSets(std::size_t n)
+    : Parent(n)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), Index(0));
+  }
+  Index Find(Index x)
+  {
+    while (this->Parent[x] != x)
+    {
+      this->Parent[x] = this->Parent[this->Parent[x]];
+      x = this->Parent[x];
+    }
+    return x;
+  }
+  void Union(Index a, Index b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+    {
+      // The smaller root wins: labels do not depend on the visiting order.
+      this->Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+};
+
+using BinKey = std::pair<std::int64_t, std::int64_t>;
+
+std::int64_t BinOf(double u, double side)
+{
+  const double t = std::floor(u / side);
+  const double lim = 4.0e18;
+  return static_cast<std::int64_t>(std::max(-lim, std::min(lim, t)));
+}
+} // namespace
+
+Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, double linkDistance)
+{
+  Clusters out;
+  const std::size_t n = subset.size();
+  if (n == 0)
+  {
+    return out;
+  }
+  if (!(linkDistance > 0.0) || n == 1)
+  {
+    out.Add(subset.begin(), subset.end());
+    return out;
+  }
+  // Bins of side d/2: two points in one bin are closer than d, so a bin is
+  // connected; points closer than d lie at most two bins apart.
+  const double side = 0.5 * linkDistance;
+  const double d2 = linkDistance * linkDistance;
+  std::vector<std::pair<BinKey, Index>> binned(n); // (bin, position in subset)
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d& p = q[subset[i]];
+    binned[i] = { { BinOf(p[0], side), BinOf(p[1], side) }, static_cast<Index>(i) };
+  }
+  std::sort(binned.begin(), binned.end());
+  std::vector<BinKey> binKeys;
+  std::vector<std::size_t> binStart;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (i == 0 || binned[i].first != binned[i - 1].first)
+    {
+      binKeys.push_back(binned[i].first);
+      binStart.push_back(i);
+    }
+  }
+  binStart.push_back(n);
+
+  DisjointSets sets(n);
+  for (std::size_t b = 0; b < binKeys.size(); ++b)
+  {
+    for (std::size_t i = binStart[b] + 1; i < binStart[b + 1]; ++i)
+    {
+      sets.Union(binned[binStart[b]].second, binned[i].second);
+    }
+  }
+  for (std::size_t a = 0; a < binKeys.size(); ++a)
+  {
+    for (std::int64_t dx = -2; dx <= 2; ++dx)
+    {
+      for (std::int64_t dy = -2; dy <= 2; ++dy)
+      {
+        // Visit each pair of bins once: only neighbours after `a` in key order.
+        if (dx < 0 || (dx == 0 && dy <= 0))
+        {
+          continue;
+        }
+        const BinKey target = { binKeys[a].first + dx, binKeys[a].second + dy };
+        const auto found = std::lower_bound(binKeys.begin(), binKeys.end(), target);
+        if (found == binKeys.end() || *found != target)
+        {
+          continue;
+        }
+        const auto b = static_cast<std::size_t>(found - binKeys.begin());
+        if (sets.Find(binned[binStart[a]].second) == sets.Find(binned[binStart[b]].second))
+        {
+          continue;
+        }
+        bool linked = false;
+        for (std::size_t i = binStart[a]; i < binStart[a + 1] && !linked; ++i)
+        {
+          const Eigen::Vector3d& p = q[subset[binned[i].second]];
+          for (std::size_t j = binStart[b]; j < binStart[b + 1]; ++j)
+          {
+            const Eigen::Vector3d& r = q[subset[binned[j].second]];
+            const double dx2 = p[0] - r[0], dy2 = p[1] - r[1];
+            if (dx2 * dx2 + dy2 * dy2 <= d2)
+            {
+              sets.Union(binned[i].second, binned[j].second);
+              linked = true;
+              break;
+            }
+          }
+        }
+      }
+    }
+  }
+  // Roots are the smallest position of each component, so walking positions
+  // in order meets components in order of their first member.
+  std::vector<Index> label(n, -1);
+  std::vector<Index> counts;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Index root = sets.Find(static_cast<Index>(i));
+    if (label[root] < 0)
+    {
+      label[root] = static_cast<Index>(counts.size());
+      counts.push_back(0);
+    }
+    ++counts[label[root]];
+  }
+  out.Offsets.assign(counts.size() + 1, 0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    out.Offsets[k + 1] = out.Offsets[k] + counts[k];
+  }
+  out.Members.resize(n);
+  std::vector<Index> fill(out.Offsets.begin(), out.Offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out.Members[fill[label[sets.Find(static_cast<Index>(i))]]++] = subset[i];
+  }
+  return out;
+}
+
+void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out)
+{
+  struct Task
+  {
+    Index* First;
+    Index* Last;
+    Index K;
+  };
+  std::vector<Task> stack = { { first, last, k } };
+  while (!stack.empty())
+  {
+    const Task t = stack.back();
+    stack.pop_back();
+    const Index n = t.Last - t.First;
+    if (t.K <= 1 || n <= 1)
+    {
+      out.Add(t.First, t.Last);
+      continue;
+    }
+    double lo[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+    double hi[2] = { -lo[0], -lo[1] };
+    for (const Index* it = t.First; it != t.Last; ++it)
+    {
+      for (int a = 0; a < 2; ++a)
+      {
+        lo[a] = std::min(lo[a], q[*it][a]);
+        hi[a] = std::max(hi[a], q[*it][a]);
+      }
+    }
+    const int axis = (hi[1] - lo[1]) > (hi[0] - lo[0]) ? 1 : 0;
+    const Index kLeft = t.K / 2;
+    const Index kRight = t.K - kLeft;
+    // Points shared in proportion to the budgets, each side keeping at least
+    // as many points as samples it must produce.
+    Index nLeft = static_cast<Index>(std::llround(static_cast<double>(n) * kLeft / t.K));
+    nLeft = std::max(kLeft, std::min(n - kRight, nLeft));
+    std::nth_element(t.First, t.First + nLeft, t.Last, [&](Index a, Index b) {
+      return q[a][axis] < q[b][axis] || (q[a][axis] == q[b][axis] && a < b);
+    });
+    // Left half first (depth first): clusters come out ordered along the split.
+    stack.push_back({ t.First + nLeft, t.Last, kRight });
+    stack.push_back({ t.First, t.First + nLeft, kLeft });
+  }
+}
+
+double PlaneLinkDistance(const LocalPoints& q, double factor)
+{
+  if (q.empty())
+  {
+    return 0.0;
+  }
+  double lo[2] = { q[0][0], q[0][1] }, hi[2] = { q[0][0], q[0][1] };
+  for (const auto& p : q)
+  {
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  const double e0 = hi[0] - lo[0], e1 = hi[1] - lo[1];
+  const auto n = static_cast<double>(q.size());
+  // Points on an area e0 x e1 have a spacing of about sqrt(area / n); on a
+  // segment (e1 ~ 0) of about e0 / n.
+  const double spacing = (e1 > 1e-12 * e0) ? std::sqrt(e0 * e1 / n) : e0 / n;
+  return factor * spacing;
+}
+
+namespace
+{
+// Partition into bands and cluster the top and bottom ones.
+void PartitionAndCluster(const LocalPoints& q, double alpha, double maxV2, double minV2,
+  double linkDistance, KeyClusters& result)
+{
+  const double range = maxV2 - minV2;
+  const double topPlane = maxV2 - alpha * range;
+  const double bottomPlane = minV2 + alpha * range;
+  std::vector<Index> top, bottom;
+  result.Middle.clear();
+  for (Index i = 0; i < static_cast<Index>(q.size()); ++i)
+  {
+    const double v = q[i][2];
+    if (v >= topPlane)
+    {
+      top.push_back(i);
+    }
+    else if (v <= bottomPlane)
+    {
+      bottom.push_back(i);
+    }
+    else
+    {
+      result.Middle.push_back(i);
+    }
+  }
+  result.Key = LinkInPlane(q, top, linkDistance);
+  result.NumberOfTop = result.Key.Size();
+  const Clusters low = LinkInPlane(q, bottom, linkDistance);
+  for (Index k = 0; k < low.Size(); ++k)
+  {
+    result.Key.Add(low.Begin(k), low.End(k));
+  }
+  result.Extreme.assign(static_cast<std::size_t>(result.Key.Size()), -1);
+  for (Index k = 0; k < result.Key.Size(); ++k)
+  {
+    const double sign = k < result.NumberOfTop ? 1.0 : -1.0;
+    Index best = -1;
+    for (const Index* it = result.Key.Begin(k); it != result.Key.End(k); ++it)
+    {
+      if (best < 0 || sign * q[*it][2] > sign * q[best][2] ||
+        (q[*it][2] == q[best][2] && *it < best))
+      {
+        best = *it;
+      }
+    }
+    result.Extreme[k] = best;
+  }
+}
+} // namespace
+
+KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options)
+{
+  KeyClusters result;
+  result.Alpha = std::min(0.5, std::max(0.0, options.Alpha));
+  if (q.empty())
+  {
+    return result;
+  }
+  double maxV2 = q[0][2], minV2 = q[0][2];
+  for (const auto& p : q)
+  {
+    maxV2 = std::max(maxV2, p[2]);
+    minV2 = std::min(minV2, p[2]);
+  }
+  if (!(maxV2 - minV2 > options.FlatTolerance))
+  {
+    // No relief along the normal: no extremes to keep.
+    result.Flat = true;
+    result.Middle.resize(q.size());
+    std::iota(result.Middle.begin(), result.Middle.end(), Index(0));
+    return result;
+  }
+  const int maxIterations = 100;
+  for (;;)
+  {
+    PartitionAndCluster(q, result.Alpha, maxV2, minV2, options.LinkDistance, result);
+    ++result.Iterations;
+    result.MaxError = 0.0;
+    for (Index k = 0; k < result.Key.Size(); ++k)
+    {
+      const Eigen::Vector3d rep =
+        Representative(q, result.Key.Begin(k), result.Key.End(k), options.Snap);
+      result.MaxError = std::max(result.MaxError, (rep - q[result.Extreme[k]]).norm());
+    }
+    if (options.ErrorTolerance <= 0.0 || result.MaxError <= options.ErrorTolerance ||
+      result.Alpha <= 0.0 || result.Iterations >= maxIterations)
+    {
+      break;
+    }
+    // Eq. 5 in a frame where MAX_v2 = 0: alpha_new = alpha * eps / MKPE_c.
+    result.Alpha *= options.ErrorTolerance / result.MaxError;
+    if (result.Alpha < 1e-12)
+    {
+      result.Alpha = 0.0;
+    }
+  }
+  return result;
+}
+} // namespace asmcore

@@ -1,0 +1,326 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Simplify.h"
+
+#include "Budget.h"
+#include "CellFrame.h"
+#include "Grid.h"
+#include "KeyPoints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace asmcore
+{
+namespace
+{
+// A group of a cell's points (local indices) that becomes one sample.
+struct Group
+{
+  std::vector<Index> Members;
+  Index Extreme = -1; // key groups: the extreme point it stands for
+};
+
+// Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
+// the groups of points that become the cell's samples.
+std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget,
+  std::uint64_t seed)
+{
+  std::vector<Group> groups;
+  const Index n = static_cast<Index>(q.size());
+  const Index keyCount = kc.Key.Size();
+  if (budget >= n)
+  {
+    // Every point is a sample; the extremes of the key clusters are key points.
+    std::vector<char> extreme(static_cast<std::size_t>(n), 0);
+    for (Index e : kc.Extreme)
+    {
+      extreme[e] = 1;
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      groups.push_back({ { i }, extreme[i] ? i : -1 });
+    }
+    return groups;
+  }
+  if (budget <= keyCount)
+  {
+    // §3.3 (iv): N_c of the C_n key points, chosen at random.
+    std::vector<Index> pick(static_cast<std::size_t>(keyCount));
+    std::iota(pick.begin(), pick.end(), Index(0));
+    SplitMix64 rng(seed);
+    for (Index i = 0; i < budget; ++i)
+    {
+      const Index j = i + static_cast<Index>(rng.Below(static_cast<std::uint64_t>(keyCount - i)));
+      std::swap(pick[i], pick[j]);
+    }
+    pick.resize(static_cast<std::size_t>(budget));
+    std::sort(pick.begin(), pick.end());
+    for (Index k : pick)
+    {
+      groups.push_back({ { kc.Key.Begin(k), kc.Key.End(k) }, kc.Extreme[k] });
+    }
+    return groups;
+  }
+  // §3.3 (iii): all key points, and N_c - C_n samples from the middle band.
+  Index wanted = budget - keyCount;
+  for (Index k = 0; k < keyCount; ++k)
+  {
+    groups.push_back({ { kc.Key.Begin(k), kc.Key.End(k) }, kc.Extreme[k] });
+  }
+  Index shortfall = wanted - static_cast<Index>(kc.Middle.size());
+  if (shortfall > 0)
+  {
+    // The bands hold most of the cell: peel the points farthest from each
+    // key cluster's extreme off as single samples (its key point only moves
+    // towards the extreme), until the budget can be met.
+    std::vector<Group> peeled;
+    for (Index k = 0; k < keyCount && shortfall > 0; ++k)
+    {
+      std::vector<Index>& members = groups[k].Members;
+      const Eigen::Vector3d e = q[groups[k].Extreme];
+      std::sort(members.begin(), members.end(), [&](Index a, Index b) {
+        const double da = (q[a] - e).squaredNorm(), db = (q[b] - e).squaredNorm();
+        return da < db || (da == db && a < b);
+      });
+      const Index peel = std::min<Index>(shortfall, static_cast<Index>(members.size()) - 1);
+      for (Index p = 0; p < peel; ++p)
+      {
+        peeled.push_back({ { members.back() }, -1 });
+        members.pop_back();
+      }
+      shortfall -= peel;
+    }
+    groups.insert(groups.end(), peeled.begin(), peeled.end());
+    wanted = static_cast<Index>(kc.Middle.size());
+  }
+  if (wanted > 0)
+  {
+    Clusters middle;
+    SplitInPlane(q, kc.Middle.data(), kc.Middle.data() + kc.Middle.size(), wanted, middle);
+    for (Index k = 0; k < middle.Size(); ++k)
+    {
+      groups.push_back({ { middle.Begin(k), middle.End(k) }, -1 });
+    }
+  }
+  return groups;
+}
+
+std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
+{
+  SplitMix64 mix(seed ^ (cellKey * 0xD1B54A32D192ED03ULL));
+  return mix.Next();
+}
+} // namespace
+
+SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
+  const SimplifyParameters& parameters, const Execution& execution)
+{
+  SimplifyResult result;
+  const Index total = static_cast<Index>(ids.size());
+  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  if (total == 0 || target == 0)
+  {
+    return result;
+  }
+
+  // 1. Hash the points into the grid.
+  const Bounds bounds = ComputeBounds(xyz, ids);
+  double cellSize = parameters.CellSize;
+  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  {
+    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+  }
+  if (execution.Report(0.1))
+  {
+    result.Aborted = true;
+    return result;
+  }
+  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  const Index cells = grid.NumberOfCells();
+  result.CellSize = grid.Spec.CellSize;
+  result.NumberOfCells = cells;
+  if (execution.Report(0.2))
+  {
+    result.Aborted = true;
+    return result;
+  }
+
+  // 2. PCA of every cell (steps i-iv).
+  std::vector<CellFrame> frames(static_cast<std::size_t>(cells));
+  execution.Run(0, cells, [&](Index b, Index e) {
+    for (Index c = b; c < e; ++c)
+    {
+      frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+    }
+  });
+  if (execution.Report(0.3))
+  {
+    result.Aborted = true;
+    return result;
+  }
+
+  // 3. Budgets (Eq. 4), exact in total.
+  std::vector<double> share(static_cast<std::size_t>(cells));
+  std::vector<Index> capacity(static_cast<std::size_t>(cells));
+  double meanVariation = 0.0;
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
+  }
+  meanVariation /= static_cast<double>(total);
+  for (Index c = 0; c < cells; ++c)
+  {
+    double weight = 1.0;
+    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    {
+      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+    }
+    share[c] = weight * static_cast<double>(capacity[c]);
+  }
+  const std::vector<Index> budget = ApportionBudget(share, capacity, target);
+  std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
+  for (Index c = 0; c < cells; ++c)
+  {
+    sampleStart[c + 1] = sampleStart[c] + budget[c];
+  }
+  result.Samples.resize(static_cast<std::size_t>(sampleStart[cells]));
+  result.Members.assign(static_cast<std::size_t>(total), -1);
+
+  Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
+  for (Index id : ids)
+  {
+    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+  }
+  cloudCentroid /= static_cast<double>(total);
+
+  // 4-6. Key points, error bound and sampling, cell by cell. Each cell writes
+  // its own slots, so the result does not depend on the thread count.
+  auto processCells = [&](Index b, Index e) {
+    LocalPoints q;
+    for (Index c = b; c < e; ++c)
+    {
+      if (budget[c] == 0)
+      {
+        continue;
+      }
+      const CellFrame& frame = frames[c];
+      const Index* points = grid.CellPoints(c);
+      const Index n = grid.CellSizeOf(c);
+      q.resize(static_cast<std::size_t>(n));
+      for (Index i = 0; i < n; ++i)
+      {
+        q[i] = frame.ToLocal(xyz + 3 * points[i]);
+      }
+      KeyPointOptions options;
+      options.Alpha = parameters.Alpha;
+      options.ErrorTolerance = parameters.ErrorTolerance;
+      options.LinkDistance = PlaneLinkDistance(q, parameters.LinkFactor);
+      options.FlatTolerance = 8.0 * parameters.CoordinateEpsilon *
+        (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
+      options.Snap = parameters.Snap;
+      KeyClusters kc = FindKeyClusters(q, options);
+      const std::vector<Group> groups =
+        CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]));
+
+      Index memberCursor = grid.CellStart[c];
+      Index sampleIndex = sampleStart[c];
+      for (const Group& group : groups)
+      {
+        Sample& s = result.Samples[sampleIndex++];
+        const Index* first = group.Members.data();
+        const Index* last = first + group.Members.size();
+        const Eigen::Vector3d local = Centroid(q, first, last);
+        const Index nearest = NearestMember(q, first, last, local);
+        // A single point, or a snapped sample, is an input point exactly.
+        const Eigen::Vector3d world = (parameters.Snap || group.Members.size() == 1)
+          ? Eigen::Vector3d(xyz[3 * points[nearest]], xyz[3 * points[nearest] + 1],
+              xyz[3 * points[nearest] + 2])
+          : Eigen::Vector3d(frame.Centroid + frame.Axes * local);
+        Eigen::Vector3d normal = frame.Normal();
+        Eigen::Vector3d reference = frame.Centroid - cloudCentroid;
+        if (normals)
+        {
+          Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+          for (Index m : group.Members)
+          {
+            const double* nm = normals + 3 * points[m];
+            const Eigen::Vector3d v(nm[0], nm[1], nm[2]);
+            if (v.allFinite())
+            {
+              sum += v;
+            }
+          }
+          if (sum.squaredNorm() > 0.0)
+          {
+            reference = sum;
+          }
+        }
+        if (normal.dot(reference) < 0.0)
+        {
+          normal = -normal;
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          s.Position[a] = world[a];
+          s.Normal[a] = normal[a];
+        }
+        s.Representative = points[nearest];
+        s.MemberBegin = memberCursor;
+        s.ClusterSize = static_cast<Index>(group.Members.size());
+        s.SurfaceVariation = frame.SurfaceVariation();
+        s.Key = group.Extreme >= 0;
+        if (s.Key)
+        {
+          const Eigen::Vector3d rep = parameters.Snap ? q[nearest] : local;
+          s.KeyError = (rep - q[group.Extreme]).norm();
+        }
+        for (Index m : group.Members)
+        {
+          result.Members[memberCursor++] = points[m];
+        }
+      }
+    }
+  };
+  // Batches between progress reports, cut by point count.
+  const int batches = 20;
+  Index cellBegin = 0;
+  for (int batch = 1; batch <= batches && cellBegin < cells; ++batch)
+  {
+    const Index pointEnd = total * batch / batches;
+    Index cellEnd = static_cast<Index>(
+      std::upper_bound(grid.CellStart.begin(), grid.CellStart.end() - 1, pointEnd) -
+      grid.CellStart.begin());
+    cellEnd = std::max(cellBegin + 1, std::min(cells, cellEnd));
+    if (batch == batches)
+    {
+      cellEnd = cells;
+    }
+    execution.Run(cellBegin, cellEnd, processCells);
+    cellBegin = cellEnd;
+    if (execution.Report(0.3 + 0.7 * batch / batches))
+    {
+      result.Samples.clear();
+      result.Members.clear();
+      result.Aborted = true;
+      return result;
+    }
+  }
+
+  // Key point error of the run, summed in sample order (deterministic).
+  double sum = 0.0;
+  for (const Sample& s : result.Samples)
+  {
+    if (s.Key)
+    {
+      ++result.NumberOfKeyPoints;
+      sum += s.KeyError;
+      result.MKPE = std::max(result.MKPE, s.KeyError);
+    }
+  }
+  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+  return result;
+}
+} // namespace asmcore

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The ASM driver (paper §3.2, §3.3, §3.5): grid hashing, per-cell PCA,
+ * budgets (Eq. 4), key points with the error bound (Eq. 5), and the
+ * combination with sampling, producing exactly N_s samples.
+ */
+#ifndef asm_core_Simplify_h
+#define asm_core_Simplify_h
+
+#include "Common.h"
+
+#include <cfloat>
+
+namespace asmcore
+{
+/// Cell weight w_c of Eq. 4.
+enum class WeightMode
+{
+  Uniform,         ///< w_c = 1
+  SurfaceVariation ///< w_c = 1 + CurvatureWeight * sigma_c / mean(sigma)
+};
+
+/// Parameters of one run; lengths in data units.
+struct VTKASMFILTERS_EXPORT SimplifyParameters
+{
+  Index NumberOfSamples = 0;   ///< N_s; clamped to the number of points
+  double CellSize = 0.0;       ///< grid cell edge; <= 0: automatic
+  double SamplesPerCell = 8.0; ///< mean budget per non-empty cell aimed at by the automatic size
+  double Alpha = 0.125;        ///< partition threshold, fraction of a cell's v2 extent
+  double ErrorTolerance = 0.0; ///< bound on each key point's error; <= 0: off
+  WeightMode Weight = WeightMode::Uniform;
+  double CurvatureWeight = 1.0;            ///< k of the surface-variation weight
+  std::uint64_t RandomSeed = 1;            ///< seed of the random choice among key points
+  bool Snap = false;                       ///< samples are input points (nearest the centroid)
+  double LinkFactor = 2.0;                 ///< key-cluster link distance, in mean point spacings
+  double CoordinateEpsilon = DBL_EPSILON;  ///< relative precision of the input coordinates
+};
+
+/// One output sample: a cluster of input points.
+struct VTKASMFILTERS_EXPORT Sample
+{
+  double Position[3] = { 0, 0, 0 }; ///< cluster centroid, or the snapped input point
+  double Normal[3] = { 0, 0, 1 };   ///< the cell's PCA normal, oriented
+  Index Representative = -1;        ///< input point nearest the centroid
+  Index MemberBegin = 0;            ///< members are SimplifyResult::Members[MemberBegin, +ClusterSize)
+  Index ClusterSize = 0;
+  double SurfaceVariation = 0.0; ///< of the sample's grid cell
+  double KeyError = 0.0;         ///< key samples: distance to the extreme input point
+  bool Key = false;              ///< the sample is a key point
+};
+
+struct VTKASMFILTERS_EXPORT SimplifyResult
+{
+  std::vector<Sample> Samples;
+  std::vector<Index> Members; ///< input point ids, grouped by sample
+  double CellSize = 0.0;
+  Index NumberOfCells = 0; ///< non-empty grid cells
+  Index NumberOfKeyPoints = 0;
+  double AKPE = 0.0; ///< mean KeyError over key samples
+  double MKPE = 0.0; ///< max KeyError over key samples
+  bool Aborted = false;
+};
+
+/// Simplify the points xyz[3*id], id in `ids` (finite points), to exactly
+/// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be null)
+/// orients the output normals; without it they point away from the cloud's
+/// centroid. Samples are ordered by grid cell, then key samples first.
+VTKASMFILTERS_EXPORT SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids,
+  const double* normals, const SimplifyParameters& parameters, const Execution& execution = {});
+} // namespace asmcore
+
+#endif

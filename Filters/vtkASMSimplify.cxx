@@ -1,0 +1,401 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkASMSimplify.h"
+
+#include "Core/Grid.h"
+#include "Core/Simplify.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+vtkStandardNewMacro(vtkASMSimplify);
+
+namespace
+{
+using asmcore::Index;
+
+// The input coordinates as N x 3 doubles: the array itself when it already is
+// one, else a copy.
+const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
+{
+  vtkDataArray* data = points->GetData();
+  if (auto* doubles = vtkDoubleArray::SafeDownCast(data))
+  {
+    return doubles->GetPointer(0);
+  }
+  copy.resize(static_cast<std::size_t>(3 * points->GetNumberOfPoints()));
+  const auto range = vtk::DataArrayValueRange<3>(data);
+  std::copy(range.begin(), range.end(), copy.begin());
+  return copy.data();
+}
+
+// Fills `out` (same class as `in`) with one tuple per sample: the mean of the
+// cluster's tuples (rounded for integer types, renormalised for normals), or
+// the representative's tuple when snapping.
+struct AggregateWorker
+{
+  template <typename ArrayT>
+  void operator()(ArrayT* in, vtkDataArray* outBase, const asmcore::SimplifyResult& result,
+    bool snap, bool renormalise, bool parallel) const
+  {
+    auto* out = static_cast<ArrayT*>(outBase);
+    using T = vtk::GetAPIType<ArrayT>;
+    const auto inTuples = vtk::DataArrayTupleRange(in);
+    auto outTuples = vtk::DataArrayTupleRange(out);
+    const int components = in->GetNumberOfComponents();
+    auto body = [&](vtkIdType begin, vtkIdType end) {
+      std::vector<double> mean(static_cast<std::size_t>(components));
+      for (vtkIdType s = begin; s < end; ++s)
+      {
+        const asmcore::Sample& sample = result.Samples[s];
+        auto dst = outTuples[s];
+        if (snap)
+        {
+          const auto src = inTuples[sample.Representative];
+          std::copy(src.begin(), src.end(), dst.begin());
+          continue;
+        }
+        std::fill(mean.begin(), mean.end(), 0.0);
+        for (Index m = 0; m < sample.ClusterSize; ++m)
+        {
+          const auto src = inTuples[result.Members[sample.MemberBegin + m]];
+          for (int c = 0; c < components; ++c)
+          {
+            mean[c] += static_cast<double>(src[c]);
+          }
+        }
+        double norm = 0.0;
+        for (int c = 0; c < components; ++c)
+        {
+          mean[c] /= static_cast<double>(sample.ClusterSize);
+          norm += mean[c] * mean[c];
+        }
+        norm = std::sqrt(norm);
+        for (int c = 0; c < components; ++c)
+        {
+          double v = mean[c];
+          if (renormalise && norm > 0.0)
+          {
+            v /= norm;
+          }
+          if (std::is_integral<T>::value)
+          {
+            v = std::round(v);
+          }
+          dst[c] = static_cast<T>(v);
+        }
+      }
+    };
+    if (parallel)
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(result.Samples.size()), body);
+    }
+    else
+    {
+      body(0, static_cast<vtkIdType>(result.Samples.size()));
+    }
+  }
+};
+
+// One output array per input point-data array, same name, type, components
+// and attribute role.
+void AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
+  const asmcore::SimplifyResult& result, bool snap)
+{
+  const auto count = static_cast<vtkIdType>(result.Samples.size());
+  vtkNew<vtkIdList> representatives;
+  representatives->SetNumberOfIds(count);
+  for (vtkIdType s = 0; s < count; ++s)
+  {
+    representatives->SetId(s, result.Samples[s].Representative);
+  }
+  for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* in = inPD->GetAbstractArray(i);
+    vtkSmartPointer<vtkAbstractArray> out = vtk::TakeSmartPointer(in->NewInstance());
+    out->SetName(in->GetName());
+    out->SetNumberOfComponents(in->GetNumberOfComponents());
+    out->CopyComponentNames(in);
+    out->SetNumberOfTuples(count);
+    auto* inData = vtkDataArray::SafeDownCast(in);
+    if (inData)
+    {
+      const bool renormalise = inData == inPD->GetNormals();
+      AggregateWorker worker;
+      if (!vtkArrayDispatch::Dispatch::Execute(
+            inData, worker, vtkDataArray::SafeDownCast(out), result, snap, renormalise, true))
+      {
+        // Unusual array classes (e.g. vtkBitArray): generic API, one thread.
+        worker(inData, vtkDataArray::SafeDownCast(out), result, snap, renormalise, false);
+      }
+    }
+    else
+    {
+      // Strings, variants: the representative's value.
+      in->GetTuples(representatives, out);
+    }
+    const int index = outPD->AddArray(out);
+    for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)
+    {
+      if (inPD->GetAbstractAttribute(attribute) == in)
+      {
+        outPD->SetActiveAttribute(index, attribute);
+      }
+    }
+  }
+}
+
+template <typename ArrayT>
+vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  auto array = NewArray<vtkDoubleArray>(name, 1, 1);
+  array->SetValue(0, value);
+  fd->AddArray(array);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkASMSimplify::vtkASMSimplify() = default;
+
+//------------------------------------------------------------------------------
+int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkASMSimplify::CheckParameters()
+{
+  const double values[] = { this->OutputFraction, this->CellSize, this->SamplesPerCell, this->Alpha,
+    this->ErrorTolerance, this->CurvatureWeight };
+  const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha",
+    "ErrorTolerance", "CurvatureWeight" };
+  for (std::size_t i = 0; i < sizeof(values) / sizeof(values[0]); ++i)
+  {
+    if (!std::isfinite(values[i]))
+    {
+      vtkErrorMacro(<< names[i] << " is not a finite number (" << values[i] << ").");
+      return false;
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkASMSimplify::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro(<< "Input must be a vtkPointSet.");
+    return 0;
+  }
+  output->GetFieldData()->PassData(input->GetFieldData());
+  if (!this->CheckParameters())
+  {
+    return 1; // empty output
+  }
+  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
+  if (numberOfPoints == 0 || !input->GetPoints())
+  {
+    vtkWarningMacro(<< "The input has no points: the output is empty.");
+    return 1;
+  }
+
+  // Coordinates, finite points, and the requested output size.
+  std::vector<double> coordinateCopy;
+  const double* xyz = CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
+  const std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
+  const auto valid = static_cast<vtkIdType>(ids.size());
+  const vtkIdType skipped = numberOfPoints - valid;
+  if (skipped > 0)
+  {
+    vtkWarningMacro(<< skipped << " input points have NaN or infinite coordinates; they are ignored.");
+  }
+  vtkIdType target = this->TargetMode == OUTPUT_FRACTION
+    ? static_cast<vtkIdType>(std::llround(this->OutputFraction * static_cast<double>(valid)))
+    : this->NumberOfOutputPoints;
+  if (target <= 0)
+  {
+    vtkWarningMacro(<< "The requested number of output points is 0: the output is empty.");
+    return 1;
+  }
+  if (target >= valid)
+  {
+    vtkWarningMacro(<< "The requested number of output points (" << target
+                    << ") is not smaller than the number of input points (" << valid
+                    << "): the input points are passed through.");
+    target = valid;
+  }
+
+  std::vector<double> normalCopy;
+  const double* normals = nullptr;
+  vtkPointData* inPD = input->GetPointData();
+  if (vtkDataArray* inNormals = inPD->GetNormals())
+  {
+    if (inNormals->GetNumberOfComponents() == 3)
+    {
+      normalCopy.resize(static_cast<std::size_t>(3 * numberOfPoints));
+      const auto range = vtk::DataArrayValueRange<3>(inNormals);
+      std::copy(range.begin(), range.end(), normalCopy.begin());
+      normals = normalCopy.data();
+    }
+  }
+
+  asmcore::SimplifyParameters parameters;
+  parameters.NumberOfSamples = target;
+  parameters.CellSize = this->CellSize;
+  parameters.SamplesPerCell = this->SamplesPerCell;
+  parameters.Alpha = this->Alpha;
+  const double diagonal = asmcore::ComputeBounds(xyz, ids).Diagonal();
+  parameters.ErrorTolerance =
+    this->RelativeErrorTolerance ? this->ErrorTolerance * diagonal : this->ErrorTolerance;
+  parameters.Weight = this->WeightMode == SURFACE_VARIATION_WEIGHT
+    ? asmcore::WeightMode::SurfaceVariation
+    : asmcore::WeightMode::Uniform;
+  parameters.CurvatureWeight = this->CurvatureWeight;
+  parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
+  parameters.Snap = this->SnapToInputPoints;
+  parameters.CoordinateEpsilon = input->GetPoints()->GetDataType() == VTK_DOUBLE
+    ? std::numeric_limits<double>::epsilon()
+    : std::numeric_limits<float>::epsilon();
+
+  asmcore::Execution execution;
+  execution.For = [](Index begin, Index end, const std::function<void(Index, Index)>& body) {
+    vtkSMPTools::For(begin, end, [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+  };
+  execution.Progress = [this](double fraction) {
+    this->UpdateProgress(0.9 * fraction);
+    return this->GetAbortExecute() != 0;
+  };
+
+  const asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters, execution);
+  if (result.Aborted)
+  {
+    vtkWarningMacro(<< "Aborted: the output is empty.");
+    return 1;
+  }
+  if (this->CellSize > 0.0 && result.CellSize > this->CellSize)
+  {
+    vtkWarningMacro(<< "CellSize " << this->CellSize << " would make more than "
+                    << asmcore::GridSpec::MaxDim << " cells along an axis; using "
+                    << result.CellSize << ".");
+  }
+  const auto count = static_cast<vtkIdType>(result.Samples.size());
+
+  // Points and one vertex cell each.
+  vtkNew<vtkPoints> points;
+  const bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
+    (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION &&
+      input->GetPoints()->GetDataType() == VTK_DOUBLE);
+  points->SetDataType(doublePrecision ? VTK_DOUBLE : VTK_FLOAT);
+  points->SetNumberOfPoints(count);
+  auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, count + 1);
+  auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, count);
+  auto keyFlags = NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
+  auto clusterSizes = NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
+  auto variation = NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
+  auto originalIds = NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
+  const bool nameTaken = inPD->GetAbstractArray("Normals") != nullptr;
+  auto pcaNormals = NewArray<vtkDoubleArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
+  for (vtkIdType s = 0; s < count; ++s)
+  {
+    const asmcore::Sample& sample = result.Samples[s];
+    points->SetPoint(s, sample.Position);
+    connectivity->SetValue(s, s);
+    offsets->SetValue(s, s);
+    keyFlags->SetValue(s, sample.Key ? 1 : 0);
+    clusterSizes->SetValue(s, sample.ClusterSize);
+    variation->SetValue(s, sample.SurfaceVariation);
+    originalIds->SetValue(s, sample.Representative);
+    pcaNormals->SetTypedTuple(s, sample.Normal);
+  }
+  offsets->SetValue(count, count);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetVerts(verts);
+  this->UpdateProgress(0.95);
+
+  // Point data: the input's arrays aggregated, then the generated ones.
+  vtkPointData* outPD = output->GetPointData();
+  AggregatePointData(inPD, outPD, result, this->SnapToInputPoints);
+  outPD->AddArray(keyFlags);
+  outPD->AddArray(clusterSizes);
+  outPD->AddArray(variation);
+  outPD->AddArray(originalIds);
+  if (nameTaken || outPD->GetNormals())
+  {
+    outPD->AddArray(pcaNormals);
+  }
+  else
+  {
+    outPD->SetNormals(pcaNormals);
+  }
+  if (!outPD->GetScalars())
+  {
+    outPD->SetActiveScalars("SurfaceVariation");
+  }
+
+  vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue(fd, "AKPE", result.AKPE);
+  AddFieldValue(fd, "MKPE", result.MKPE);
+  AddFieldValue(fd, "NumberOfKeyPoints", static_cast<double>(result.NumberOfKeyPoints));
+  AddFieldValue(fd, "CellSize", result.CellSize);
+  AddFieldValue(fd, "NumberOfSkippedPoints", static_cast<double>(skipped));
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TargetMode: "
+     << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";
+  os << indent << "OutputFraction: " << this->OutputFraction << "\n";
+  os << indent << "NumberOfOutputPoints: " << this->NumberOfOutputPoints << "\n";
+  os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "SamplesPerCell: " << this->SamplesPerCell << "\n";
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "RelativeErrorTolerance: " << this->RelativeErrorTolerance << "\n";
+  os << indent << "WeightMode: "
+     << (this->WeightMode == UNIFORM_WEIGHT ? "Uniform" : "SurfaceVariation") << "\n";
+  os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
+  os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "SnapToInputPoints: " << this->SnapToInputPoints << "\n";
+  os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
+}

@@ -1,0 +1,230 @@
+/**
+ * @class   vtkASMSimplify
+ * @brief   simplify a point cloud to exactly N_s points with the Adaptive
+ *          Simplification Method (ASM) of Yu & Wong (ICME 2006)
+ *
+ * vtkASMSimplify takes any vtkPointSet (polydata with or without cells,
+ * unstructured grid, ...; float or double points) and returns a vtkPolyData
+ * holding exactly N_s points, one vertex cell each. The method (paper §3.2,
+ * §3.3 and §3.5):
+ *
+ * 1. hash the points into a uniform grid of cubic cells (edge CellSize, or
+ *    chosen automatically so that a non-empty cell receives about
+ *    SamplesPerCell output points on average);
+ * 2. give every non-empty cell c a budget N_c proportional to w_c * n_c
+ *    (paper Eq. 4), rounded with the largest-remainder method so that the
+ *    budgets add up to N_s exactly; w_c = 1 (uniform density) by default, or
+ *    driven by the cell's surface variation (adaptive density);
+ * 3. in each cell, compute the PCA frame (v0, v1, v2; v2 ~ normal), split the
+ *    points into a top, middle and bottom band along v2 with the partition
+ *    threshold Alpha, and cluster the top and bottom bands separately in the
+ *    (v0, v1) plane: each separate cluster's centroid is a key point;
+ * 4. keep all key points and fill the rest of the cell's budget by clustering
+ *    the middle band in the (v0, v1) plane, or, when the budget is smaller than
+ *    the number of key points, keep a random subset of them (RandomSeed);
+ * 5. when ErrorTolerance > 0, shrink Alpha in a cell (paper Eq. 5, translation
+ *    invariant form alpha_new = alpha * eps / MKPE_c) until every key point of
+ *    the cell lies within the tolerance of the extreme input point it stands
+ *    for.
+ *
+ * Output arrays: every input point-data array, aggregated over each sample's
+ * cluster (numeric arrays averaged, the normals attribute renormalised;
+ * with SnapToInputPoints on, the values of the snapped input point);
+ * "Normals" (the cell's PCA normal, oriented to agree with the input normals
+ * when there are some, else away from the cloud's centroid; named "PCANormals"
+ * if the input already has an array called "Normals"); "KeyPoint" (1 for
+ * key-point samples, else 0); "ClusterSize" (input points the sample stands
+ * for); "SurfaceVariation" (lambda2 / (lambda0 + lambda1 + lambda2) of the
+ * sample's grid cell); "vtkOriginalPointIds" (id of the input point nearest
+ * the sample's cluster centroid). Field data: "AKPE" and "MKPE" (mean and
+ * maximum distance, in data units, between each key point placed and the
+ * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
+ * "NumberOfSkippedPoints" (non-finite input points ignored).
+ *
+ * The output is deterministic: the same input, parameters and RandomSeed give
+ * the same points in the same order whatever the number of threads.
+ *
+ * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
+ */
+
+#ifndef vtkASMSimplify_h
+#define vtkASMSimplify_h
+
+#include "vtkASMFiltersModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class VTKASMFILTERS_EXPORT vtkASMSimplify : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkASMSimplify* New();
+  vtkTypeMacro(vtkASMSimplify, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How the requested output size N_s is given.
+  enum TargetModes
+  {
+    OUTPUT_FRACTION = 0,        ///< N_s = round(OutputFraction * N)
+    NUMBER_OF_OUTPUT_POINTS = 1 ///< N_s = NumberOfOutputPoints
+  };
+
+  /// How the per-cell weight w_c of Eq. 4 is chosen.
+  enum WeightModes
+  {
+    UNIFORM_WEIGHT = 0,          ///< w_c = 1: output density follows input density
+    SURFACE_VARIATION_WEIGHT = 1 ///< w_c = 1 + CurvatureWeight * sigma_c / mean(sigma)
+  };
+
+  ///@{
+  /**
+   * Whether N_s comes from OutputFraction (default) or NumberOfOutputPoints.
+   */
+  vtkSetClampMacro(TargetMode, int, OUTPUT_FRACTION, NUMBER_OF_OUTPUT_POINTS);
+  vtkGetMacro(TargetMode, int);
+  void SetTargetModeToOutputFraction() { this->SetTargetMode(OUTPUT_FRACTION); }
+  void SetTargetModeToNumberOfOutputPoints() { this->SetTargetMode(NUMBER_OF_OUTPUT_POINTS); }
+  ///@}
+
+  ///@{
+  /**
+   * Fraction of the (finite) input points to keep, in [0, 1]; default 0.05.
+   * Used when TargetMode is OUTPUT_FRACTION.
+   */
+  vtkSetClampMacro(OutputFraction, double, 0.0, 1.0);
+  vtkGetMacro(OutputFraction, double);
+  ///@}
+
+  ///@{
+  /**
+   * Exact number of output points N_s (>= 0); default 1000. Used when
+   * TargetMode is NUMBER_OF_OUTPUT_POINTS. N_s >= N passes the input through.
+   */
+  vtkSetClampMacro(NumberOfOutputPoints, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(NumberOfOutputPoints, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Edge length of the grid cells, in data units; <= 0 (default) chooses it
+   * automatically from SamplesPerCell.
+   */
+  vtkSetMacro(CellSize, double);
+  vtkGetMacro(CellSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Mean number of output samples per non-empty grid cell aimed at by the
+   * automatic cell size (points per cell, >= 1); default 8.
+   */
+  vtkSetClampMacro(SamplesPerCell, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SamplesPerCell, double);
+  ///@}
+
+  ///@{
+  /**
+   * Partition threshold alpha of §3.2, as a fraction of the cell's extent
+   * along v2, in [0, 0.5]; default 1/8.
+   */
+  vtkSetClampMacro(Alpha, double, 0.0, 0.5);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /**
+   * Error tolerance epsilon on the maximum key point error (MKPE), in data
+   * units (or a fraction of the bounding-box diagonal when
+   * RelativeErrorTolerance is on); <= 0 (default) turns the bound off.
+   */
+  vtkSetMacro(ErrorTolerance, double);
+  vtkGetMacro(ErrorTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * When on, ErrorTolerance is a fraction of the input bounding-box diagonal
+   * instead of a length; default off.
+   */
+  vtkSetMacro(RelativeErrorTolerance, bool);
+  vtkGetMacro(RelativeErrorTolerance, bool);
+  vtkBooleanMacro(RelativeErrorTolerance, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Cell weight w_c of Eq. 4: UNIFORM_WEIGHT (default) or
+   * SURFACE_VARIATION_WEIGHT (more samples where the surface bends).
+   */
+  vtkSetClampMacro(WeightMode, int, UNIFORM_WEIGHT, SURFACE_VARIATION_WEIGHT);
+  vtkGetMacro(WeightMode, int);
+  void SetWeightModeToUniform() { this->SetWeightMode(UNIFORM_WEIGHT); }
+  void SetWeightModeToSurfaceVariation() { this->SetWeightMode(SURFACE_VARIATION_WEIGHT); }
+  ///@}
+
+  ///@{
+  /**
+   * Strength k of the adaptive weight w_c = 1 + k * sigma_c / mean(sigma)
+   * (dimensionless, >= 0); default 1. Used with SURFACE_VARIATION_WEIGHT.
+   */
+  vtkSetClampMacro(CurvatureWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(CurvatureWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random choice among key points when a cell's budget is
+   * smaller than its number of key points (§3.3); default 1.
+   */
+  vtkSetMacro(RandomSeed, int);
+  vtkGetMacro(RandomSeed, int);
+  ///@}
+
+  ///@{
+  /**
+   * When on, each sample is the input point nearest its cluster centroid
+   * (a measured point, with that point's attribute values) instead of the
+   * centroid itself; default off.
+   */
+  vtkSetMacro(SnapToInputPoints, bool);
+  vtkGetMacro(SnapToInputPoints, bool);
+  vtkBooleanMacro(SnapToInputPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Precision of the output points (vtkAlgorithm::DesiredOutputPrecision);
+   * default DEFAULT_PRECISION, which follows the input.
+   */
+  vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+protected:
+  vtkASMSimplify();
+  ~vtkASMSimplify() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// Reports non-finite parameters; false stops the run with an empty output.
+  bool CheckParameters();
+
+  int TargetMode = OUTPUT_FRACTION;
+  double OutputFraction = 0.05;
+  vtkIdType NumberOfOutputPoints = 1000;
+  double CellSize = 0.0;
+  double SamplesPerCell = 8.0;
+  double Alpha = 0.125;
+  double ErrorTolerance = 0.0;
+  bool RelativeErrorTolerance = false;
+  int WeightMode = UNIFORM_WEIGHT;
+  double CurvatureWeight = 1.0;
+  int RandomSeed = 1;
+  bool SnapToInputPoints = false;
+  int OutputPointsPrecision = DEFAULT_PRECISION;
+
+private:
+  vtkASMSimplify(const vtkASMSimplify&) = delete;
+  void operator=(const vtkASMSimplify&) = delete;
+};
+
+#endif

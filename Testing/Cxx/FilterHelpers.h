@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// VTK-side helpers shared by the filter tests.
+#ifndef asm_FilterHelpers_h
+#define asm_FilterHelpers_h
+
+#include "TestHelpers.h"
+
+#include "vtkASMSimplify.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+#include <string>
+
+namespace asmtest
+{
+inline vtkSmartPointer<vtkPolyData> ReadPLY(const std::string& name)
+{
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(DataFile(name).c_str());
+  reader->Update();
+  vtkSmartPointer<vtkPolyData> data = reader->GetOutput();
+  return data;
+}
+
+inline vtkSmartPointer<vtkPolyData> ToPolyData(const Cloud& c, int type = VTK_DOUBLE)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(type);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(c.size() / 3));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, c.data() + 3 * i);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  return pd;
+}
+
+inline double FieldValue(vtkDataSet* ds, const char* name)
+{
+  vtkDataArray* a = ds->GetFieldData()->GetArray(name);
+  return a ? a->GetTuple1(0) : std::nan("");
+}
+
+/// Counts warnings and errors instead of printing them.
+class MessageCounter : public vtkCommand
+{
+public:
+  static MessageCounter* New() { return new MessageCounter; }
+  void Execute(vtkObject*, unsigned long event, void*) override
+  {
+    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
+  }
+  int Warnings = 0;
+  int Errors = 0;
+};
+
+/// A vtkASMSimplify whose warnings and errors are counted.
+struct FilterRun
+{
+  vtkNew<vtkASMSimplify> Filter;
+  vtkNew<MessageCounter> Messages;
+  FilterRun()
+  {
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
+  }
+  vtkPolyData* Execute(vtkDataObject* input)
+  {
+    this->Filter->SetInputData(input);
+    this->Filter->Update();
+    return this->Filter->GetOutput();
+  }
+  void Count(vtkIdType n)
+  {
+    this->Filter->SetTargetModeToNumberOfOutputPoints();
+    this->Filter->SetNumberOfOutputPoints(n);
+  }
+};
+} // namespace asmtest
+
+#endif

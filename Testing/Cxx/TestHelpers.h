@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Shapes and small utilities shared by the GoogleTest tests.
+#ifndef asm_TestHelpers_h
+#define asm_TestHelpers_h
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace asmtest
+{
+/// Points as N x 3 doubles.
+using Cloud = std::vector<double>;
+
+inline void Add(Cloud& c, double x, double y, double z)
+{
+  c.push_back(x);
+  c.push_back(y);
+  c.push_back(z);
+}
+
+/// Points of a regular (n x n) grid over [-half, half]^2 with z = f(x, y).
+template <typename F>
+Cloud GridSurface(int n, double half, F f)
+{
+  Cloud c;
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      const double x = -half + 2.0 * half * i / (n - 1);
+      const double y = -half + 2.0 * half * j / (n - 1);
+      Add(c, x, y, f(x, y));
+    }
+  }
+  return c;
+}
+
+/// n random points on a sphere of the given radius and centre.
+inline Cloud Sphere(std::size_t n, double radius, unsigned seed = 7, double cx = 0, double cy = 0,
+  double cz = 0)
+{
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  Cloud c;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double v[3] = { g(rng), g(rng), g(rng) };
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    Add(c, cx + radius * v[0] / l, cy + radius * v[1] / l, cz + radius * v[2] / l);
+  }
+  return c;
+}
+
+inline std::string DataFile(const std::string& name)
+{
+  return std::string(ASM_TEST_DATA_DIR) + "/" + name;
+}
+} // namespace asmtest
+
+#endif

@@ -1,0 +1,60 @@
+"""pvpython test: load the ASM plugin, simplify the Stanford bunny to 5 %.
+
+Environment (set by CTest, see CMakeLists.txt):
+  ASM_PLUGIN    path of the plugin library (or give it as the first argument)
+  ASM_DATA_DIR  Testing/Data
+"""
+import os
+import sys
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403
+
+here = os.path.dirname(os.path.abspath(__file__))
+plugin = sys.argv[1] if len(sys.argv) > 1 else os.environ.get("ASM_PLUGIN")
+data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(here, "..", "Data"))
+if not plugin or not os.path.isfile(plugin):
+    sys.exit("TestPluginLoad: plugin not found (ASM_PLUGIN=%r)" % plugin)
+
+LoadPlugin(plugin, ns=globals())
+print("loaded plugin", plugin)
+
+reader = PLYReader(FileNames=[os.path.join(data_dir, "bunny.ply")])
+asm = ASMSimplify(Input=reader, OutputFraction=0.05)  # noqa: F405
+
+# Every property of Plugin/ASMSimplify.xml, with its default.
+expected_defaults = {
+    "TargetMode": "Output Fraction",
+    "OutputFraction": 0.05,
+    "NumberOfOutputPoints": 1000,
+    "CellSize": 0.0,
+    "SamplesPerCell": 8.0,
+    "Alpha": 0.125,
+    "ErrorTolerance": 0.0,
+    "RelativeErrorTolerance": 0,
+    "WeightMode": "Uniform",
+    "CurvatureWeight": 1.0,
+    "RandomSeed": 1,
+    "SnapToInputPoints": 0,
+    "OutputPointsPrecision": "Same as input",
+}
+for name, value in expected_defaults.items():
+    actual = asm.GetPropertyValue(name)
+    assert actual == value, "%s: %r != %r" % (name, actual, value)
+print("properties and defaults OK")
+
+asm.UpdatePipeline()
+out = servermanager.Fetch(asm)
+
+n_in = servermanager.Fetch(reader).GetNumberOfPoints()
+assert n_in == 35947, n_in
+expected = round(0.05 * n_in)  # 1797
+n_out = out.GetNumberOfPoints()
+print("N = %d, N_s = %d (expected %d)" % (n_in, n_out, expected))
+assert n_out == expected, "got %d points, expected %d" % (n_out, expected)
+
+point_data = out.GetPointData()
+for name in ("KeyPoint", "ClusterSize", "SurfaceVariation", "Normals", "vtkOriginalPointIds"):
+    assert point_data.GetArray(name) is not None, "missing point array " + name
+    assert point_data.GetArray(name).GetNumberOfTuples() == n_out, name
+print("TestPluginLoad: OK")
