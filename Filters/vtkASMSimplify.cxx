@@ -9,6 +9,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -329,7 +330,7 @@ int vtkASMSimplify::RequestData(
   auto variation = NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
   auto originalIds = NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
   const bool nameTaken = inPD->GetAbstractArray("Normals") != nullptr;
-  auto pcaNormals = NewArray<vtkDoubleArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
+  auto pcaNormals = NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
   for (vtkIdType s = 0; s < count; ++s)
   {
     const asmcore::Sample& sample = result.Samples[s];

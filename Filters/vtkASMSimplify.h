@@ -30,7 +30,7 @@
  * Output arrays: every input point-data array, aggregated over each sample's
  * cluster (numeric arrays averaged, the normals attribute renormalised;
  * with SnapToInputPoints on, the values of the snapped input point);
- * "Normals" (the cell's PCA normal, oriented to agree with the input normals
+ * "Normals" (float; the cell's PCA normal, oriented to agree with the input normals
  * when there are some, else away from the cloud's centroid; named "PCANormals"
  * if the input already has an array called "Normals"); "KeyPoint" (1 for
  * key-point samples, else 0); "ClusterSize" (input points the sample stands

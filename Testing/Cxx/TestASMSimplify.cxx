@@ -388,3 +388,24 @@ TEST(ASMSimplify, SurfaceVariationWeightMovesSamplesToCurvedParts)
     uniform.Filter->GetOutput()->GetNumberOfPoints());
   EXPECT_GT(onBall(adaptive.Filter), onBall(uniform.Filter) * 5 / 4);
 }
+
+TEST(ASMSimplify, InputNormalsKeepTheirNameAndOrientThePCANormals)
+{
+  auto input = ReadPLY("kitten.ply"); // nx ny nz: an array called "Normals"
+  ASSERT_NE(input->GetPointData()->GetNormals(), nullptr);
+  FilterRun run;
+  vtkPolyData* out = run.Execute(input);
+  vtkPointData* pd = out->GetPointData();
+  vtkDataArray* normals = pd->GetArray("Normals");
+  vtkDataArray* pca = pd->GetArray("PCANormals");
+  ASSERT_NE(normals, nullptr);
+  ASSERT_NE(pca, nullptr);
+  EXPECT_EQ(pd->GetNormals(), normals);
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    normals->GetTuple(i, a);
+    pca->GetTuple(i, b);
+    EXPECT_GE(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 0.0) << i;
+  }
+}

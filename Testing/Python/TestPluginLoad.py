@@ -41,7 +41,20 @@ expected_defaults = {
 for name, value in expected_defaults.items():
     actual = asm.GetPropertyValue(name)
     assert actual == value, "%s: %r != %r" % (name, actual, value)
-print("properties and defaults OK")
+    doc = asm.GetProperty(name).SMProperty.GetDocumentation()
+    assert doc is not None and doc.GetDescription().strip(), name + " has no documentation"
+print("properties, defaults and documentation OK")
+
+# Menu entry and display hints.
+assert asm.SMProxy.GetXMLLabel() == "ASM Simplify", asm.SMProxy.GetXMLLabel()
+hints = asm.SMProxy.GetHints()
+menu = hints.FindNestedElementByName("ShowInMenu")
+assert menu is not None and menu.GetAttribute("category") == "Point Cloud"
+visibility = hints.FindNestedElementByName("Visibility")
+assert visibility is not None and visibility.GetAttribute("replace_input") == "0"
+representation = hints.FindNestedElementByName("RepresentationType")
+assert representation is not None and representation.GetAttribute("type") == "Points"
+print("label and hints OK")
 
 asm.UpdatePipeline()
 out = servermanager.Fetch(asm)
@@ -57,4 +70,12 @@ point_data = out.GetPointData()
 for name in ("KeyPoint", "ClusterSize", "SurfaceVariation", "Normals", "vtkOriginalPointIds"):
     assert point_data.GetArray(name) is not None, "missing point array " + name
     assert point_data.GetArray(name).GetNumberOfTuples() == n_out, name
-print("TestPluginLoad: OK")
+print("TestPluginLoad: OutputFraction OK")
+
+# The other target mode, through the enumeration and the id-type property.
+asm.TargetMode = "Number Of Output Points"
+asm.NumberOfOutputPoints = 500
+asm.UpdatePipeline()
+n_out = servermanager.Fetch(asm).GetNumberOfPoints()
+assert n_out == 500, "NumberOfOutputPoints=500 gave %d points" % n_out
+print("TestPluginLoad: NumberOfOutputPoints OK")
