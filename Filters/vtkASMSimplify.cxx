@@ -341,7 +341,7 @@ int vtkASMSimplify::RequestData(
     clusterSizes->SetValue(s, sample.ClusterSize);
     variation->SetValue(s, sample.SurfaceVariation);
     originalIds->SetValue(s, sample.Representative);
-    pcaNormals->SetTypedTuple(s, sample.Normal);
+    pcaNormals->SetTuple(s, sample.Normal);
   }
   offsets->SetValue(count, count);
   vtkNew<vtkCellArray> verts;
