@@ -1,0 +1,56 @@
+"""Time vtkASMSimplify on PLY scans and print one line per scan (pvpython).
+
+    PYTHONPATH=build/lib/python3/dist-packages pvpython Examples/Python/time_scans.py \
+        [--fraction 0.05] [--runs 5] [--threads 0] scan.ply [scan.ply ...]
+
+Prints N, N_s, the median wall time of --runs executions of the filter alone
+(reading excluded), AKPE, MKPE, the number of key points and the cell size.
+--threads > 0 uses vtkSMPTools' STDThread backend with that many threads;
+0 keeps the default backend (Sequential on Debian's ParaView).
+"""
+import argparse
+import os
+import statistics
+import time
+
+from asmvtk import vtkASMSimplify
+from vtkmodules.vtkCommonCore import vtkSMPTools
+from vtkmodules.vtkIOPLY import vtkPLYReader
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scans", nargs="+")
+    parser.add_argument("--fraction", type=float, default=0.05)
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--threads", type=int, default=0)
+    args = parser.parse_args()
+    if args.threads > 0:
+        vtkSMPTools.SetBackend("STDThread")
+        vtkSMPTools.Initialize(args.threads)
+    print("backend %s, %d thread(s)" % (vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads()))
+    print("%-18s %9s %7s %9s %10s %10s %6s %9s" % ("scan", "N", "N_s", "time (s)", "AKPE", "MKPE", "keys", "cell"))
+    for path in args.scans:
+        reader = vtkPLYReader()
+        reader.SetFileName(path)
+        reader.Update()
+        asm = vtkASMSimplify()
+        asm.SetInputData(reader.GetOutput())
+        asm.SetOutputFraction(args.fraction)
+        times = []
+        for _ in range(args.runs):
+            asm.Modified()
+            start = time.perf_counter()
+            asm.Update()
+            times.append(time.perf_counter() - start)
+        out = asm.GetOutput()
+        fd = out.GetFieldData()
+        value = lambda name: fd.GetArray(name).GetValue(0)
+        print("%-18s %9d %7d %9.4f %10.3g %10.3g %6d %9.4g" % (
+            os.path.basename(path), reader.GetOutput().GetNumberOfPoints(), out.GetNumberOfPoints(),
+            statistics.median(times), value("AKPE"), value("MKPE"), value("NumberOfKeyPoints"),
+            value("CellSize")))
+
+
+if __name__ == "__main__":
+    main()
