@@ -280,9 +280,11 @@ int vtkASMSimplify::RequestData(
   parameters.CellSize = this->CellSize;
   parameters.SamplesPerCell = this->SamplesPerCell;
   parameters.Alpha = this->Alpha;
-  const double diagonal = asmcore::ComputeBounds(xyz, ids).Diagonal();
-  parameters.ErrorTolerance =
-    this->RelativeErrorTolerance ? this->ErrorTolerance * diagonal : this->ErrorTolerance;
+  parameters.ErrorTolerance = this->ErrorTolerance;
+  if (this->RelativeErrorTolerance && this->ErrorTolerance > 0.0)
+  {
+    parameters.ErrorTolerance *= asmcore::ComputeBounds(xyz, ids).Diagonal();
+  }
   parameters.Weight = this->WeightMode == SURFACE_VARIATION_WEIGHT
     ? asmcore::WeightMode::SurfaceVariation
     : asmcore::WeightMode::Uniform;

@@ -122,6 +122,11 @@ TEST(ASMSimplify, ErrorToleranceBoundsMKPEOnTheBunny)
     EXPECT_EQ(out->GetNumberOfPoints(), 1797);
     EXPECT_LE(FieldValue(out, "MKPE"), factor * mkpe);
   }
+  // The bound holds for snapped key points too.
+  FilterRun snapped;
+  snapped.Filter->SnapToInputPointsOn();
+  snapped.Filter->SetErrorTolerance(0.2 * mkpe);
+  EXPECT_LE(FieldValue(snapped.Execute(input), "MKPE"), 0.2 * mkpe);
   // Relative to the bounding-box diagonal.
   double b[6];
   input->GetBounds(b);
