@@ -358,8 +358,11 @@ KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options
       break;
     }
     // Eq. 5 in a frame where MAX_v2 = 0: alpha_new = alpha * eps / MKPE_c.
-    result.Alpha *= options.ErrorTolerance / result.MaxError;
-    if (result.Alpha < 1e-12)
+    // At least a 10 % step: a snapped key point's error moves in jumps, and
+    // an error just above eps would otherwise shrink alpha too slowly. The
+    // last pass uses alpha = 0, where each band is its extreme point alone.
+    result.Alpha *= std::min(0.9, options.ErrorTolerance / result.MaxError);
+    if (result.Alpha < 1e-12 || result.Iterations + 1 >= maxIterations)
     {
       result.Alpha = 0.0;
     }

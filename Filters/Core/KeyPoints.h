@@ -101,8 +101,9 @@ VTKASMFILTERS_EXPORT double PlaneLinkDistance(const LocalPoints& q, double facto
 /// translation-invariant Eq. 5) until every key cluster's representative is
 /// within the tolerance of its extreme point. MKPE_c is taken over every key
 /// cluster (the paper's global max and min included), so the bound holds for
-/// each key point. It terminates: as alpha -> 0 the bands shrink to the
-/// extreme points themselves.
+/// each key point. Each step shrinks alpha by at least 10 %, and the last of
+/// at most 100 passes uses alpha = 0, where a band holds only the points at
+/// the extreme itself: the bound is met unless several points tie there.
 VTKASMFILTERS_EXPORT KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options);
 } // namespace asmcore
 
