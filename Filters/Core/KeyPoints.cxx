@@ -369,4 +369,24 @@ KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options
   }
   return result;
 }
+
+KeyClusters FindCellKeyClusters(const double* xyz, const Index* points, Index n,
+  const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q)
+{
+  q.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i)
+  {
+    q[i] = frame.ToLocal(xyz + 3 * points[i]);
+  }
+  KeyPointOptions options;
+  options.Alpha = rule.Alpha;
+  options.ErrorTolerance = rule.ErrorTolerance;
+  options.LinkDistance = PlaneLinkDistance(q, rule.LinkFactor);
+  // Rounding of the input coordinates (relative to their magnitude) and of
+  // the PCA must not make a flat cell look curved.
+  options.FlatTolerance = 8.0 * rule.CoordinateEpsilon *
+    (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
+  options.Snap = rule.Snap;
+  return FindKeyClusters(q, options);
+}
 } // namespace asmcore

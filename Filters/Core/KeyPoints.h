@@ -11,9 +11,12 @@
 #ifndef asm_core_KeyPoints_h
 #define asm_core_KeyPoints_h
 
+#include "CellFrame.h"
 #include "Common.h"
 
 #include <Eigen/Core>
+
+#include <cfloat>
 
 namespace asmcore
 {
@@ -105,6 +108,23 @@ VTKASMFILTERS_EXPORT double PlaneLinkDistance(const LocalPoints& q, double facto
 /// at most 100 passes uses alpha = 0, where a band holds only the points at
 /// the extreme itself: the bound is met unless several points tie there.
 VTKASMFILTERS_EXPORT KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options);
+/// The key point rule shared by every filter that looks for key points (the
+/// simplifier and the key point error), so both see the same key points.
+struct VTKASMFILTERS_EXPORT KeyPointRule
+{
+  double Alpha = 0.125;                   ///< partition threshold, fraction of the v2 extent
+  double ErrorTolerance = 0.0;            ///< bound on each key point's error (length); <= 0: off
+  double LinkFactor = 2.0;                ///< key-cluster link distance, in mean point spacings
+  double CoordinateEpsilon = DBL_EPSILON; ///< relative precision of the input coordinates
+  bool Snap = false;                      ///< key points are snapped to input points
+};
+
+/// The key clusters of one grid cell holding the points xyz[3*points[i]],
+/// i < n, whose PCA frame is `frame`. Fills `q` with the points in the frame
+/// (q[i] for points[i]). A cell whose extent along v2 is within rounding of
+/// its coordinates (CoordinateEpsilon) is flat.
+VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(const double* xyz, const Index* points,
+  Index n, const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
 } // namespace asmcore
 
 #endif

@@ -196,6 +196,13 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
   cloudCentroid /= static_cast<double>(total);
 
+  KeyPointRule rule;
+  rule.Alpha = parameters.Alpha;
+  rule.ErrorTolerance = parameters.ErrorTolerance;
+  rule.LinkFactor = parameters.LinkFactor;
+  rule.CoordinateEpsilon = parameters.CoordinateEpsilon;
+  rule.Snap = parameters.Snap;
+
   // 4-6. Key points, error bound and sampling, cell by cell. Each cell writes
   // its own slots, so the result does not depend on the thread count.
   auto processCells = [&](Index b, Index e) {
@@ -209,19 +216,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
       const CellFrame& frame = frames[c];
       const Index* points = grid.CellPoints(c);
       const Index n = grid.CellSizeOf(c);
-      q.resize(static_cast<std::size_t>(n));
-      for (Index i = 0; i < n; ++i)
-      {
-        q[i] = frame.ToLocal(xyz + 3 * points[i]);
-      }
-      KeyPointOptions options;
-      options.Alpha = parameters.Alpha;
-      options.ErrorTolerance = parameters.ErrorTolerance;
-      options.LinkDistance = PlaneLinkDistance(q, parameters.LinkFactor);
-      options.FlatTolerance = 8.0 * parameters.CoordinateEpsilon *
-        (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
-      options.Snap = parameters.Snap;
-      KeyClusters kc = FindKeyClusters(q, options);
+      KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
       const std::vector<Group> groups =
         CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]));
 
