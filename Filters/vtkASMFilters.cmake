@@ -14,7 +14,7 @@ set(_asm_filters_dir "${CMAKE_CURRENT_LIST_DIR}")
 # installed and wrapped (Python, ParaView client-server).
 set(ASM_FILTERS_CLASSES
   vtkASMSimplify
-  # vtkKeyPointError
+  vtkKeyPointError
 )
 # Private core, plain C++17 + Eigen, no VTK types: Core/<Name>.h + Core/<Name>.cxx.
 # Not wrapped and not installed; included as "Core/<Name>.h" (from the module
@@ -26,12 +26,14 @@ set(ASM_FILTERS_CORE
   KeyPoints
   Budget
   Simplify
-  # Curvature
-  # Metrics
+  Neighbors
+  Curvature
+  Metrics
 )
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
+  vtkASMFilterUtilities.h
 )
 # ============================================================================
 

@@ -2,7 +2,9 @@
 #include "vtkASMSimplify.h"
 
 #include "Core/Grid.h"
+#include "Core/Neighbors.h"
 #include "Core/Simplify.h"
+#include "vtkASMFilterUtilities.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -34,21 +36,6 @@ vtkStandardNewMacro(vtkASMSimplify);
 namespace
 {
 using asmcore::Index;
-
-// The input coordinates as N x 3 doubles: the array itself when it already is
-// one, else a copy.
-const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
-{
-  vtkDataArray* data = points->GetData();
-  if (auto* doubles = vtkDoubleArray::SafeDownCast(data))
-  {
-    return doubles->GetPointer(0);
-  }
-  copy.resize(static_cast<std::size_t>(3 * points->GetNumberOfPoints()));
-  const auto range = vtk::DataArrayValueRange<3>(data);
-  std::copy(range.begin(), range.end(), copy.begin());
-  return copy.data();
-}
 
 // Fills `out` (same class as `in`) with one tuple per sample: the mean of the
 // cluster's tuples (rounded for integer types, renormalised for normals), or
@@ -166,22 +153,6 @@ void AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
   }
 }
 
-template <typename ArrayT>
-vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<ArrayT>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
-void AddFieldValue(vtkFieldData* fd, const char* name, double value)
-{
-  auto array = NewArray<vtkDoubleArray>(name, 1, 1);
-  array->SetValue(0, value);
-  fd->AddArray(array);
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -237,7 +208,7 @@ int vtkASMSimplify::RequestData(
 
   // Coordinates, finite points, and the requested output size.
   std::vector<double> coordinateCopy;
-  const double* xyz = CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
+  const double* xyz = asmvtk::CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
   const std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
   const auto valid = static_cast<vtkIdType>(ids.size());
   const vtkIdType skipped = numberOfPoints - valid;
@@ -295,16 +266,8 @@ int vtkASMSimplify::RequestData(
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
 
-  asmcore::Execution execution;
-  execution.For = [](Index begin, Index end, const std::function<void(Index, Index)>& body) {
-    vtkSMPTools::For(begin, end, [&body](vtkIdType b, vtkIdType e) { body(b, e); });
-  };
-  execution.Progress = [this](double fraction) {
-    this->UpdateProgress(0.9 * fraction);
-    return this->GetAbortExecute() != 0;
-  };
-
-  const asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters, execution);
+  const asmcore::SimplifyResult result = asmcore::Simplify(
+    xyz, ids, normals, parameters, asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9));
   if (result.Aborted)
   {
     vtkWarningMacro(<< "Aborted: the output is empty.");
@@ -325,14 +288,14 @@ int vtkASMSimplify::RequestData(
       input->GetPoints()->GetDataType() == VTK_DOUBLE);
   points->SetDataType(doublePrecision ? VTK_DOUBLE : VTK_FLOAT);
   points->SetNumberOfPoints(count);
-  auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, count + 1);
-  auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, count);
-  auto keyFlags = NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
-  auto clusterSizes = NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
-  auto variation = NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
-  auto originalIds = NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
+  auto offsets = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, count + 1);
+  auto connectivity = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, count);
+  auto keyFlags = asmvtk::NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
+  auto clusterSizes = asmvtk::NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
+  auto variation = asmvtk::NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
+  auto originalIds = asmvtk::NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
   const bool nameTaken = inPD->GetAbstractArray("Normals") != nullptr;
-  auto pcaNormals = NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
+  auto pcaNormals = asmvtk::NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
   for (vtkIdType s = 0; s < count; ++s)
   {
     const asmcore::Sample& sample = result.Samples[s];
@@ -350,7 +313,7 @@ int vtkASMSimplify::RequestData(
   verts->SetData(offsets, connectivity);
   output->SetPoints(points);
   output->SetVerts(verts);
-  this->UpdateProgress(0.95);
+  this->UpdateProgress(this->GenerateCurvature ? 0.72 : 0.95);
 
   // Point data: the input's arrays aggregated, then the generated ones.
   vtkPointData* outPD = output->GetPointData();
@@ -367,17 +330,37 @@ int vtkASMSimplify::RequestData(
   {
     outPD->SetNormals(pcaNormals);
   }
+  if (this->GenerateCurvature)
+  {
+    // At the output points, from the original cloud, signed by the output
+    // normals (the PCA normals, oriented).
+    std::vector<double> positions(static_cast<std::size_t>(3 * count));
+    std::vector<double> orientation(static_cast<std::size_t>(3 * count));
+    for (vtkIdType s = 0; s < count; ++s)
+    {
+      std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
+      std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
+    }
+    const asmcore::Neighbors tree(xyz, ids);
+    if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
+          orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
+    {
+      vtkWarningMacro(<< "Aborted: the output is empty.");
+      output->Initialize();
+      return 1;
+    }
+  }
   if (!outPD->GetScalars())
   {
-    outPD->SetActiveScalars("SurfaceVariation");
+    outPD->SetActiveScalars(this->GenerateCurvature ? "MeanCurvature" : "SurfaceVariation");
   }
 
   vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue(fd, "AKPE", result.AKPE);
-  AddFieldValue(fd, "MKPE", result.MKPE);
-  AddFieldValue(fd, "NumberOfKeyPoints", static_cast<double>(result.NumberOfKeyPoints));
-  AddFieldValue(fd, "CellSize", result.CellSize);
-  AddFieldValue(fd, "NumberOfSkippedPoints", static_cast<double>(skipped));
+  asmvtk::AddFieldValue(fd, "AKPE", result.AKPE);
+  asmvtk::AddFieldValue(fd, "MKPE", result.MKPE);
+  asmvtk::AddFieldValue(fd, "NumberOfKeyPoints", static_cast<double>(result.NumberOfKeyPoints));
+  asmvtk::AddFieldValue(fd, "CellSize", result.CellSize);
+  asmvtk::AddFieldValue(fd, "NumberOfSkippedPoints", static_cast<double>(skipped));
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -400,5 +383,7 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "SnapToInputPoints: " << this->SnapToInputPoints << "\n";
+  os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
+  os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
 }

@@ -36,7 +36,9 @@
  * key-point samples, else 0); "ClusterSize" (input points the sample stands
  * for); "SurfaceVariation" (lambda2 / (lambda0 + lambda1 + lambda2) of the
  * sample's grid cell); "vtkOriginalPointIds" (id of the input point nearest
- * the sample's cluster centroid). Field data: "AKPE" and "MKPE" (mean and
+ * the sample's cluster centroid); with GenerateCurvature (default on),
+ * "MeanCurvature" and "NeighborhoodSurfaceVariation" from the input points
+ * around each sample (see vtkKeyPointError for measuring a simplification). Field data: "AKPE" and "MKPE" (mean and
  * maximum distance, in data units, between each key point placed and the
  * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
  * "NumberOfSkippedPoints" (non-finite input points ignored).
@@ -191,6 +193,26 @@ public:
 
   ///@{
   /**
+   * When on (default), add "MeanCurvature" (1/length, positive where the
+   * surface bends away from the output normal) and
+   * "NeighborhoodSurfaceVariation" at each output point, estimated from its
+   * CurvatureNeighbors nearest input points (a quadric fit in their PCA frame).
+   */
+  vtkSetMacro(GenerateCurvature, bool);
+  vtkGetMacro(GenerateCurvature, bool);
+  vtkBooleanMacro(GenerateCurvature, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Neighbourhood size of the curvature estimates (points, >= 6); default 20.
+   */
+  vtkSetClampMacro(CurvatureNeighbors, int, 6, 1000);
+  vtkGetMacro(CurvatureNeighbors, int);
+  ///@}
+
+  ///@{
+  /**
    * Precision of the output points (vtkAlgorithm::DesiredOutputPrecision);
    * default DEFAULT_PRECISION, which follows the input.
    */
@@ -220,6 +242,8 @@ protected:
   double CurvatureWeight = 1.0;
   int RandomSeed = 1;
   bool SnapToInputPoints = false;
+  bool GenerateCurvature = true;
+  int CurvatureNeighbors = 20;
   int OutputPointsPrecision = DEFAULT_PRECISION;
 
 private:

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Metrics.h"
+
+#include "CellFrame.h"
+#include "Neighbors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace asmcore
+{
+DistanceSummary Summarize(const std::vector<double>& d)
+{
+  DistanceSummary s;
+  s.Count = static_cast<Index>(d.size());
+  if (d.empty())
+  {
+    return s;
+  }
+  double sum = 0.0, sumSquares = 0.0;
+  for (double v : d)
+  {
+    sum += v;
+    sumSquares += v * v;
+    s.Max = std::max(s.Max, v);
+  }
+  s.Mean = sum / static_cast<double>(d.size());
+  s.RMS = std::sqrt(sumSquares / static_cast<double>(d.size()));
+  return s;
+}
+
+std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, const std::vector<Index>& ids,
+  const GridSpec& spec, const KeyPointRule& rule, const Execution& execution)
+{
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec);
+  const Index cells = grid.NumberOfCells();
+  std::vector<std::vector<Eigen::Vector3d>> perCell(static_cast<std::size_t>(cells));
+  execution.Run(0, cells, [&](Index b, Index e) {
+    LocalPoints q;
+    for (Index c = b; c < e; ++c)
+    {
+      const Index* points = grid.CellPoints(c);
+      const Index n = grid.CellSizeOf(c);
+      const CellFrame frame = ComputeCellFrame(xyz, points, n);
+      const KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
+      for (Index k = 0; k < kc.Key.Size(); ++k)
+      {
+        perCell[c].push_back(frame.Centroid + frame.Axes * Centroid(q, kc.Key.Begin(k), kc.Key.End(k)));
+      }
+    }
+  });
+  std::vector<Eigen::Vector3d> keys;
+  for (const auto& cell : perCell)
+  {
+    keys.insert(keys.end(), cell.begin(), cell.end());
+  }
+  return keys;
+}
+
+std::vector<double> NearestDistances(
+  const double* xyz, const std::vector<Index>& ids, const Neighbors& target, const Execution& execution)
+{
+  std::vector<double> d(ids.size(), std::numeric_limits<double>::infinity());
+  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      d[i] = target.Nearest(xyz + 3 * ids[i]).Distance;
+    }
+  });
+  return d;
+}
+
+std::vector<double> PointToPlaneDistances(const double* xyz, const std::vector<Index>& ids,
+  const double* surfaceXyz, const Neighbors& surface, int k, const Execution& execution)
+{
+  std::vector<double> d(ids.size(), std::numeric_limits<double>::infinity());
+  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
+    std::vector<Index> near;
+    std::vector<double> sq;
+    for (Index i = b; i < e; ++i)
+    {
+      const double* p = xyz + 3 * ids[i];
+      surface.KNearest(p, std::max(1, k), near, sq);
+      if (near.empty())
+      {
+        continue;
+      }
+      if (near.size() < 3)
+      {
+        d[i] = std::sqrt(sq[0]);
+        continue;
+      }
+      const CellFrame plane =
+        ComputeCellFrame(surfaceXyz, near.data(), static_cast<Index>(near.size()));
+      d[i] = std::abs(plane.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - plane.Centroid));
+    }
+  });
+  return d;
+}
+
+namespace
+{
+std::vector<double> Flatten(const std::vector<Eigen::Vector3d>& points, std::vector<Index>& ids)
+{
+  std::vector<double> flat;
+  flat.reserve(3 * points.size());
+  ids.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    flat.insert(flat.end(), { points[i][0], points[i][1], points[i][2] });
+    ids[i] = static_cast<Index>(i);
+  }
+  return flat;
+}
+
+Bounds Union(const Bounds& a, const Bounds& b)
+{
+  if (!a.Valid || !b.Valid)
+  {
+    return a.Valid ? a : b;
+  }
+  Bounds u = a;
+  for (int k = 0; k < 3; ++k)
+  {
+    u.Min[k] = std::min(a.Min[k], b.Min[k]);
+    u.Max[k] = std::max(a.Max[k], b.Max[k]);
+  }
+  return u;
+}
+} // namespace
+
+Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
+  const Neighbors& originalTree, const double* sxyz, const std::vector<Index>& sids,
+  const ComparisonOptions& options, const Execution& execution)
+{
+  Comparison result;
+  if (ids.empty() || sids.empty())
+  {
+    return result;
+  }
+  const Bounds original = ComputeBounds(xyz, ids);
+  const Bounds both = Union(original, ComputeBounds(sxyz, sids));
+  result.Diagonal = original.Diagonal();
+
+  // One grid for both clouds, sized as the simplifier sizes it: from the
+  // original points and the simplified count.
+  double cellSize = options.CellSize;
+  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  {
+    cellSize = AutomaticCellSize(xyz, ids, both,
+      static_cast<double>(sids.size()) / std::max(1.0, options.SamplesPerCell));
+  }
+  const GridSpec spec = GridSpec::Make(both, cellSize);
+  result.CellSize = spec.CellSize;
+  if (execution.Report(0.1))
+  {
+    result.Aborted = true;
+    return result;
+  }
+
+  // Key point error (Eq. 1-3): each original key point against the nearest
+  // key point of the simplified cloud (its nearest point when it has none).
+  KeyPointRule rule = options.Rule;
+  rule.ErrorTolerance = 0.0;
+  rule.Snap = false;
+  const auto originalKeys = CloudKeyPoints(xyz, ids, spec, rule, execution);
+  const auto simplifiedKeys = CloudKeyPoints(sxyz, sids, spec, rule, execution);
+  result.OriginalKeyPoints = static_cast<Index>(originalKeys.size());
+  result.SimplifiedKeyPoints = static_cast<Index>(simplifiedKeys.size());
+  if (execution.Report(0.4))
+  {
+    result.Aborted = true;
+    return result;
+  }
+  std::vector<Index> keyIds, simplifiedKeyIds;
+  const std::vector<double> keyXyz = Flatten(originalKeys, keyIds);
+  const std::vector<double> simplifiedKeyXyz = Flatten(simplifiedKeys, simplifiedKeyIds);
+  const Neighbors simplifiedTree(sxyz, sids);
+  const Neighbors simplifiedKeyTree(simplifiedKeyXyz.data(), simplifiedKeyIds);
+  std::vector<double> keyErrors = NearestDistances(keyXyz.data(), keyIds,
+    simplifiedKeys.empty() ? simplifiedTree : simplifiedKeyTree, execution);
+  if (options.Measure == KeyPointDistance::Squared)
+  {
+    for (double& e : keyErrors)
+    {
+      e *= e;
+    }
+  }
+  const DistanceSummary keySummary = Summarize(keyErrors);
+  result.AKPE = keySummary.Mean;
+  result.MKPE = keySummary.Max;
+  if (execution.Report(0.5))
+  {
+    result.Aborted = true;
+    return result;
+  }
+
+  // Nearest-neighbour distances both ways, and the Hausdorff distance.
+  result.OriginalToSimplified = Summarize(NearestDistances(xyz, ids, simplifiedTree, execution));
+  result.SimplifiedToOriginal = Summarize(NearestDistances(sxyz, sids, originalTree, execution));
+  result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);
+  if (execution.Report(0.7))
+  {
+    result.Aborted = true;
+    return result;
+  }
+
+  // Point-to-plane: original points to the simplified surface, and each
+  // simplified point's distance to the original surface.
+  result.PointToPlane = Summarize(
+    PointToPlaneDistances(xyz, ids, sxyz, simplifiedTree, options.PlaneNeighbors, execution));
+  result.SimplifiedError =
+    PointToPlaneDistances(sxyz, sids, xyz, originalTree, options.PlaneNeighbors, execution);
+  execution.Report(1.0);
+  return result;
+}
+} // namespace asmcore

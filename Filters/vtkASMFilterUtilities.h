@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Private helpers shared by the ASM filters (not wrapped, not installed):
+ * coordinates as doubles, the vtkSMPTools execution of the core, field
+ * values, and the curvature arrays.
+ */
+#ifndef vtkASMFilterUtilities_h
+#define vtkASMFilterUtilities_h
+
+#include "Core/Common.h"
+#include "Core/Curvature.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace asmvtk
+{
+/// The coordinates of `points` as N x 3 doubles: the array itself when it
+/// already is one, else a copy in `copy`.
+inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
+{
+  vtkDataArray* data = points->GetData();
+  if (auto* doubles = vtkDoubleArray::SafeDownCast(data))
+  {
+    return doubles->GetPointer(0);
+  }
+  copy.resize(static_cast<std::size_t>(3 * points->GetNumberOfPoints()));
+  const auto range = vtk::DataArrayValueRange<3>(data);
+  std::copy(range.begin(), range.end(), copy.begin());
+  return copy.data();
+}
+
+/// Runs the core's loops with vtkSMPTools; progress goes to `algorithm`,
+/// scaled into [from, to], and its AbortExecute flag aborts.
+inline asmcore::Execution SMPExecution(vtkAlgorithm* algorithm, double from, double to)
+{
+  asmcore::Execution execution;
+  execution.For = [](asmcore::Index begin, asmcore::Index end,
+                    const std::function<void(asmcore::Index, asmcore::Index)>& body) {
+    vtkSMPTools::For(begin, end, [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+  };
+  execution.Progress = [algorithm, from, to](double fraction) {
+    algorithm->UpdateProgress(from + (to - from) * fraction);
+    return algorithm->GetAbortExecute() != 0;
+  };
+  return execution;
+}
+
+/// A new array of `tuples` x `components`.
+template <typename ArrayT>
+vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+/// Adds (or replaces) a one-value double array in `fd`.
+inline void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  auto array = NewArray<vtkDoubleArray>(name, 1, 1);
+  array->SetValue(0, value);
+  fd->AddArray(array);
+}
+
+/// Adds "MeanCurvature" (1/length, positive where the surface bends away
+/// from the normal) and "NeighborhoodSurfaceVariation" to `pd`, estimated at
+/// the positions `queries` (n x 3) from the k nearest points of the original
+/// cloud (xyz, ids, tree), signs following `normals` (n x 3, may be null).
+/// Returns false if aborted.
+inline bool AddCurvatureArrays(vtkPointData* pd, const double* xyz,
+  const std::vector<asmcore::Index>& ids, const asmcore::Neighbors& tree, const double* queries,
+  vtkIdType n, const double* normals, int k, const asmcore::Execution& execution)
+{
+  const auto estimates = asmcore::EstimateCurvature(xyz, ids, tree, queries, n, normals, k, execution);
+  if (static_cast<vtkIdType>(estimates.size()) != n)
+  {
+    return false;
+  }
+  auto mean = NewArray<vtkDoubleArray>("MeanCurvature", 1, n);
+  auto variation = NewArray<vtkDoubleArray>("NeighborhoodSurfaceVariation", 1, n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    mean->SetValue(i, estimates[i].MeanCurvature);
+    variation->SetValue(i, estimates[i].SurfaceVariation);
+  }
+  pd->AddArray(mean);
+  pd->AddArray(variation);
+  return true;
+}
+} // namespace asmvtk
+
+#endif

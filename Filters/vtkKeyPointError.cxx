@@ -1,0 +1,261 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkKeyPointError.h"
+
+#include "Core/Grid.h"
+#include "Core/Metrics.h"
+#include "Core/Neighbors.h"
+#include "vtkASMFilterUtilities.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+vtkStandardNewMacro(vtkKeyPointError);
+
+namespace
+{
+using asmcore::Index;
+
+// A cloud's coordinates as doubles and its finite points.
+struct Cloud
+{
+  std::vector<double> Copy;
+  const double* Xyz = nullptr;
+  std::vector<Index> Ids;
+  vtkIdType Skipped = 0;
+
+  explicit Cloud(vtkPointSet* data)
+  {
+    if (data->GetPoints() && data->GetNumberOfPoints() > 0)
+    {
+      this->Xyz = asmvtk::CoordinatesAsDoubles(data->GetPoints(), this->Copy);
+      this->Ids = asmcore::FinitePointIds(this->Xyz, data->GetNumberOfPoints());
+      this->Skipped = data->GetNumberOfPoints() - static_cast<vtkIdType>(this->Ids.size());
+    }
+  }
+};
+
+bool Overlap(const asmcore::Bounds& a, const asmcore::Bounds& b)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (a.Max[k] < b.Min[k] || b.Max[k] < a.Min[k])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkKeyPointError::vtkKeyPointError()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+int vtkKeyPointError::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkKeyPointError::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkKeyPointError::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* original = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* simplified = vtkPointSet::GetData(inputVector[1]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  if (!original || !simplified || !output || !table)
+  {
+    vtkErrorMacro(<< "Needs two point sets: the original (port 0) and a simplified cloud (port 1).");
+    return 0;
+  }
+  if (!std::isfinite(this->CellSize))
+  {
+    vtkErrorMacro(<< "CellSize is not a finite number (" << this->CellSize << ").");
+    return 1;
+  }
+  const Cloud orig(original);
+  const Cloud simp(simplified);
+  if (orig.Ids.empty() || simp.Ids.empty())
+  {
+    vtkErrorMacro(<< "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
+                  << " cloud has no finite points: nothing to measure.");
+    return 1;
+  }
+  if (orig.Skipped + simp.Skipped > 0)
+  {
+    vtkWarningMacro(<< orig.Skipped << " original and " << simp.Skipped
+                    << " simplified points have NaN or infinite coordinates; they are ignored.");
+  }
+  if (simp.Ids.size() > orig.Ids.size())
+  {
+    vtkWarningMacro(<< "The simplified cloud has more points (" << simp.Ids.size()
+                    << ") than the original (" << orig.Ids.size() << "): check the inputs' order.");
+  }
+  if (!Overlap(asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
+  {
+    vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
+                       "between unrelated clouds.");
+  }
+
+  const asmcore::Neighbors originalTree(orig.Xyz, orig.Ids);
+  asmcore::ComparisonOptions options;
+  options.Rule.Alpha = this->Alpha;
+  options.Rule.CoordinateEpsilon = original->GetPoints()->GetDataType() == VTK_DOUBLE
+    ? std::numeric_limits<double>::epsilon()
+    : std::numeric_limits<float>::epsilon();
+  options.CellSize = this->CellSize;
+  options.SamplesPerCell = this->SamplesPerCell;
+  options.Measure = this->DistanceMeasure == SQUARED_DISTANCE ? asmcore::KeyPointDistance::Squared
+                                                              : asmcore::KeyPointDistance::Euclidean;
+  options.PlaneNeighbors = this->PlaneNeighbors;
+  const asmcore::Comparison result = asmcore::CompareClouds(orig.Xyz, orig.Ids, originalTree,
+    simp.Xyz, simp.Ids, options, asmvtk::SMPExecution(this, 0.0, 0.8));
+  if (result.Aborted)
+  {
+    vtkWarningMacro(<< "Aborted: the output is empty.");
+    return 1;
+  }
+
+  // The simplified cloud, one vertex per point, its arrays, and the errors.
+  const vtkIdType n = simplified->GetNumberOfPoints();
+  output->SetPoints(simplified->GetPoints());
+  auto offsets = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
+  auto connectivity = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetVerts(verts);
+  vtkPointData* pd = output->GetPointData();
+  pd->PassData(simplified->GetPointData());
+  auto error = asmvtk::NewArray<vtkDoubleArray>("Error", 1, n);
+  error->Fill(std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < simp.Ids.size(); ++i)
+  {
+    error->SetValue(simp.Ids[i], result.SimplifiedError[i]);
+  }
+  pd->AddArray(error);
+
+  if (this->GenerateCurvature)
+  {
+    // Estimated at the finite simplified points, signed by their normals.
+    std::vector<double> queries, normals;
+    vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
+    const bool useNormals = inNormals && inNormals->GetNumberOfComponents() == 3;
+    for (Index id : simp.Ids)
+    {
+      queries.insert(queries.end(), simp.Xyz + 3 * id, simp.Xyz + 3 * id + 3);
+      if (useNormals)
+      {
+        const double* v = inNormals->GetTuple3(id);
+        normals.insert(normals.end(), v, v + 3);
+      }
+    }
+    vtkNew<vtkPointData> finite;
+    if (!asmvtk::AddCurvatureArrays(finite, orig.Xyz, orig.Ids, originalTree, queries.data(),
+          static_cast<vtkIdType>(simp.Ids.size()), useNormals ? normals.data() : nullptr,
+          this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.8, 0.95)))
+    {
+      vtkWarningMacro(<< "Aborted: the output is empty.");
+      output->Initialize();
+      return 1;
+    }
+    for (int a = 0; a < finite->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* compact = finite->GetArray(a);
+      auto full = asmvtk::NewArray<vtkDoubleArray>(compact->GetName(), 1, n);
+      full->Fill(std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t i = 0; i < simp.Ids.size(); ++i)
+      {
+        full->SetValue(simp.Ids[i], compact->GetTuple1(static_cast<vtkIdType>(i)));
+      }
+      pd->AddArray(full);
+    }
+  }
+
+  // The figures: field data of the output, and a one-row table.
+  const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : 1.0;
+  const double keyScale = this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
+  const std::vector<std::pair<const char*, double>> figures = {
+    { "NumberOfOriginalPoints", static_cast<double>(orig.Ids.size()) },
+    { "NumberOfSimplifiedPoints", static_cast<double>(simp.Ids.size()) },
+    { "CellSize", result.CellSize },
+    { "NumberOfOriginalKeyPoints", static_cast<double>(result.OriginalKeyPoints) },
+    { "NumberOfSimplifiedKeyPoints", static_cast<double>(result.SimplifiedKeyPoints) },
+    { "AKPE", result.AKPE },
+    { "MKPE", result.MKPE },
+    { "AKPERelative", result.AKPE / keyScale },
+    { "MKPERelative", result.MKPE / keyScale },
+    { "HausdorffDistance", result.Hausdorff },
+    { "HausdorffDistanceRelative", result.Hausdorff / diagonal },
+    { "MeanDistanceOriginalToSimplified", result.OriginalToSimplified.Mean },
+    { "RMSDistanceOriginalToSimplified", result.OriginalToSimplified.RMS },
+    { "MaxDistanceOriginalToSimplified", result.OriginalToSimplified.Max },
+    { "MeanDistanceSimplifiedToOriginal", result.SimplifiedToOriginal.Mean },
+    { "RMSDistanceSimplifiedToOriginal", result.SimplifiedToOriginal.RMS },
+    { "MaxDistanceSimplifiedToOriginal", result.SimplifiedToOriginal.Max },
+    { "PointToPlaneMean", result.PointToPlane.Mean },
+    { "PointToPlaneRMS", result.PointToPlane.RMS },
+    { "PointToPlaneMax", result.PointToPlane.Max },
+    { "PointToPlaneMeanRelative", result.PointToPlane.Mean / diagonal },
+    { "BoundingBoxDiagonal", result.Diagonal },
+  };
+  vtkFieldData* fd = output->GetFieldData();
+  fd->PassData(simplified->GetFieldData());
+  for (const auto& figure : figures)
+  {
+    asmvtk::AddFieldValue(fd, figure.first, figure.second);
+    auto column = asmvtk::NewArray<vtkDoubleArray>(figure.first, 1, 1);
+    column->SetValue(0, figure.second);
+    table->AddColumn(column);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkKeyPointError::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "SamplesPerCell: " << this->SamplesPerCell << "\n";
+  os << indent << "DistanceMeasure: "
+     << (this->DistanceMeasure == EUCLIDEAN_DISTANCE ? "Euclidean" : "Squared") << "\n";
+  os << indent << "PlaneNeighbors: " << this->PlaneNeighbors << "\n";
+  os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
+  os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
+}

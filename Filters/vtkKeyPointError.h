@@ -1,0 +1,158 @@
+/**
+ * @class   vtkKeyPointError
+ * @brief   measure how well a simplified point cloud keeps an original one:
+ *          the key point error of Yu & Wong (AKPE, MKPE) and the usual
+ *          distances (Hausdorff, nearest neighbour, point to plane)
+ *
+ * Input port 0 is the original cloud, port 1 a simplified cloud (from
+ * vtkASMSimplify or any other method: only the points are used). Both may be
+ * any vtkPointSet; non-finite points are skipped with a warning.
+ *
+ * Key point error (paper §3.4): the key points of both clouds are found with
+ * the rule of vtkASMSimplify (§3.2: per grid cell, PCA, the Alpha bands along
+ * v2 clustered in the (v0, v1) plane, a key point per cluster centroid) on one
+ * grid covering both clouds, whose cell edge is CellSize, or, when that is
+ * <= 0, what vtkASMSimplify would choose for the simplified cloud's size
+ * (SamplesPerCell). Each original key point is paired with the nearest key
+ * point of the simplified cloud (its nearest point when the simplified cloud
+ * has no key point). AKPE is the mean (Eq. 1) and MKPE the maximum (Eq. 2)
+ * of the pair distances: Euclidean by default, squared (the paper's Eq. 3 as
+ * printed) with DistanceMeasure = SQUARED_DISTANCE.
+ *
+ * The measures the field uses, so ASM can be compared with a voxel grid or
+ * random sampling on equal terms: the symmetric Hausdorff distance between
+ * the point sets; mean, RMS and maximum nearest-neighbour distance in each
+ * direction; and the point-to-plane distance of every original point to the
+ * simplified surface (a plane fitted to its PlaneNeighbors nearest simplified
+ * points): mean, RMS, maximum.
+ *
+ * Output port 0: the simplified cloud (one vertex per point) with every
+ * input point array, "Error" (each simplified point's distance to the
+ * original surface, a plane fitted to its PlaneNeighbors nearest original
+ * points; NaN for skipped points), and, when GenerateCurvature is on,
+ * "MeanCurvature" and "NeighborhoodSurfaceVariation" estimated from the
+ * original cloud; all figures as one-value arrays in its field data.
+ * Output port 1: a one-row vtkTable of the same figures (ParaView shows it in
+ * a spreadsheet view). Figure names end in "Relative" when divided by the
+ * original's bounding-box diagonal (by its square for squared AKPE/MKPE).
+ *
+ * @sa vtkASMSimplify
+ */
+
+#ifndef vtkKeyPointError_h
+#define vtkKeyPointError_h
+
+#include "vtkASMFiltersModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkAlgorithmOutput;
+class vtkDataObject;
+
+class VTKASMFILTERS_EXPORT vtkKeyPointError : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkKeyPointError* New();
+  vtkTypeMacro(vtkKeyPointError, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How paired key points are compared.
+  enum DistanceMeasures
+  {
+    EUCLIDEAN_DISTANCE = 0, ///< |p - p'|, data units
+    SQUARED_DISTANCE = 1    ///< |p - p'|^2 (paper Eq. 3 as printed), squared data units
+  };
+
+  ///@{
+  /**
+   * The simplified cloud, on input port 1 (port 0 is the original).
+   */
+  void SetSimplifiedConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetSimplifiedData(vtkDataObject* data) { this->SetInputData(1, data); }
+  ///@}
+
+  ///@{
+  /**
+   * Partition threshold of the key point rule, as in vtkASMSimplify
+   * (fraction of a cell's extent along v2, [0, 0.5]); default 1/8.
+   */
+  vtkSetClampMacro(Alpha, double, 0.0, 0.5);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /**
+   * Edge of the grid cells for the key points, in data units; <= 0 (default)
+   * sizes it as vtkASMSimplify does for the simplified cloud's point count.
+   */
+  vtkSetMacro(CellSize, double);
+  vtkGetMacro(CellSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Samples per non-empty cell assumed by the automatic cell size (points,
+   * >= 1); default 8, as in vtkASMSimplify.
+   */
+  vtkSetClampMacro(SamplesPerCell, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SamplesPerCell, double);
+  ///@}
+
+  ///@{
+  /**
+   * Distance between paired key points: EUCLIDEAN_DISTANCE (default) or
+   * SQUARED_DISTANCE (the paper's Eq. 3 read literally).
+   */
+  vtkSetClampMacro(DistanceMeasure, int, EUCLIDEAN_DISTANCE, SQUARED_DISTANCE);
+  vtkGetMacro(DistanceMeasure, int);
+  ///@}
+
+  ///@{
+  /**
+   * Number of nearest points a local plane is fitted to for the
+   * point-to-plane distances (points, >= 3); default 8.
+   */
+  vtkSetClampMacro(PlaneNeighbors, int, 3, 1000);
+  vtkGetMacro(PlaneNeighbors, int);
+  ///@}
+
+  ///@{
+  /**
+   * When on (default), add "MeanCurvature" (1/length) and
+   * "NeighborhoodSurfaceVariation" to the output, estimated at each
+   * simplified point from its CurvatureNeighbors nearest original points.
+   */
+  vtkSetMacro(GenerateCurvature, bool);
+  vtkGetMacro(GenerateCurvature, bool);
+  vtkBooleanMacro(GenerateCurvature, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Neighbourhood size of the curvature estimates (points, >= 6); default 20.
+   */
+  vtkSetClampMacro(CurvatureNeighbors, int, 6, 1000);
+  vtkGetMacro(CurvatureNeighbors, int);
+  ///@}
+
+protected:
+  vtkKeyPointError();
+  ~vtkKeyPointError() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Alpha = 0.125;
+  double CellSize = 0.0;
+  double SamplesPerCell = 8.0;
+  int DistanceMeasure = EUCLIDEAN_DISTANCE;
+  int PlaneNeighbors = 8;
+  bool GenerateCurvature = true;
+  int CurvatureNeighbors = 20;
+
+private:
+  vtkKeyPointError(const vtkKeyPointError&) = delete;
+  void operator=(const vtkKeyPointError&) = delete;
+};
+
+#endif

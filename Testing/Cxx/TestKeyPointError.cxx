@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of vtkKeyPointError, and of the curvature arrays of both filters.
+#include "vtkKeyPointError.h"
+
+#include "FilterHelpers.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkPointData.h"
+#include "vtkTable.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+using namespace asmtest;
+
+namespace
+{
+struct ErrorRun
+{
+  vtkNew<vtkKeyPointError> Filter;
+  vtkNew<MessageCounter> Messages;
+  ErrorRun()
+  {
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
+  }
+  vtkPolyData* Execute(vtkDataObject* original, vtkDataObject* simplified)
+  {
+    this->Filter->SetInputData(0, original);
+    this->Filter->SetSimplifiedData(simplified);
+    this->Filter->Update();
+    return vtkPolyData::SafeDownCast(this->Filter->GetOutputDataObject(0));
+  }
+  double Figure(const char* name)
+  {
+    auto* table = vtkTable::SafeDownCast(this->Filter->GetOutputDataObject(1));
+    vtkAbstractArray* column = table ? table->GetColumnByName(name) : nullptr;
+    return column ? column->GetVariantValue(0).ToDouble() : std::nan("");
+  }
+};
+
+Cloud Shifted(const Cloud& c, double dx, double dy, double dz)
+{
+  Cloud s = c;
+  for (std::size_t i = 0; i < s.size(); i += 3)
+  {
+    s[i] += dx;
+    s[i + 1] += dy;
+    s[i + 2] += dz;
+  }
+  return s;
+}
+
+double Median(vtkDataArray* a)
+{
+  std::vector<double> v;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    v.push_back(a->GetTuple1(i));
+  }
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+const Cloud Bump = GridSurface(39, 1.0, [](double x, double y) { return -0.5 * (x * x + y * y); });
+} // namespace
+
+TEST(KeyPointError, IdenticalCloudsHaveNoError)
+{
+  auto cloud = ToPolyData(Bump);
+  ErrorRun run;
+  vtkPolyData* out = run.Execute(cloud, cloud);
+  ASSERT_EQ(out->GetNumberOfPoints(), cloud->GetNumberOfPoints());
+  EXPECT_EQ(out->GetNumberOfVerts(), out->GetNumberOfPoints());
+  EXPECT_GT(run.Figure("NumberOfOriginalKeyPoints"), 0.0);
+  EXPECT_EQ(run.Figure("NumberOfOriginalKeyPoints"), run.Figure("NumberOfSimplifiedKeyPoints"));
+  for (const char* name : { "AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplified",
+         "MaxDistanceSimplifiedToOriginal" })
+  {
+    EXPECT_EQ(run.Figure(name), 0.0) << name;
+  }
+  EXPECT_EQ(FieldValue(out, "AKPE"), 0.0);
+  EXPECT_EQ(run.Messages->Warnings + run.Messages->Errors, 0);
+}
+
+TEST(KeyPointError, AShiftedCloudIsAsFarAsTheShift)
+{
+  // One cell for both clouds: the key points shift with the cloud, so every
+  // pair is exactly d apart.
+  const double d = 0.01;
+  auto original = ToPolyData(Bump);
+  auto shifted = ToPolyData(Shifted(Bump, 0, 0, d));
+  ErrorRun run;
+  run.Filter->SetCellSize(10.0);
+  vtkPolyData* out = run.Execute(original, shifted);
+  EXPECT_NEAR(run.Figure("AKPE"), d, 1e-12);
+  EXPECT_NEAR(run.Figure("MKPE"), d, 1e-12);
+  EXPECT_NEAR(run.Figure("AKPERelative"), d / 3.0, 1e-9); // diagonal sqrt(2^2 + 2^2 + 1^2)
+  // Vertical shift of a surface of small slope: NN distances at most d.
+  EXPECT_LE(run.Figure("HausdorffDistance"), d + 1e-12);
+  EXPECT_GT(run.Figure("HausdorffDistance"), 0.5 * d);
+  EXPECT_GT(run.Figure("PointToPlaneMean"), 0.5 * d);
+  EXPECT_LE(run.Figure("PointToPlaneMax"), d + 1e-9);
+  vtkDataArray* error = out->GetPointData()->GetArray("Error");
+  ASSERT_NE(error, nullptr);
+  EXPECT_NEAR(Median(error), d, 0.2 * d);
+  // The paper's Eq. 3 as printed: squared distances.
+  ErrorRun squared;
+  squared.Filter->SetCellSize(10.0);
+  squared.Filter->SetDistanceMeasure(vtkKeyPointError::SQUARED_DISTANCE);
+  squared.Execute(original, shifted);
+  EXPECT_NEAR(squared.Figure("AKPE"), d * d, 1e-14);
+}
+
+TEST(KeyPointError, MeasuresAnASMSimplification)
+{
+  auto bunny = ReadPLY("bunny.ply");
+  FilterRun asmRun;
+  vtkPolyData* simplified = asmRun.Execute(bunny);
+  ErrorRun run;
+  vtkPolyData* out = run.Execute(bunny, simplified);
+  ASSERT_EQ(out->GetNumberOfPoints(), 1797);
+  auto* table = vtkTable::SafeDownCast(run.Filter->GetOutputDataObject(1));
+  ASSERT_NE(table, nullptr);
+  EXPECT_EQ(table->GetNumberOfRows(), 1);
+  EXPECT_GE(table->GetNumberOfColumns(), 20);
+  const double akpe = run.Figure("AKPE"), mkpe = run.Figure("MKPE");
+  EXPECT_GT(akpe, 0.0);
+  EXPECT_GE(mkpe, akpe);
+  EXPECT_EQ(FieldValue(out, "MKPE"), mkpe);
+  EXPECT_GE(run.Figure("HausdorffDistance"), run.Figure("MaxDistanceOriginalToSimplified"));
+  EXPECT_GE(run.Figure("RMSDistanceOriginalToSimplified"), run.Figure("MeanDistanceOriginalToSimplified"));
+  EXPECT_LE(run.Figure("PointToPlaneMean"), run.Figure("MeanDistanceOriginalToSimplified"));
+  // Centroids of 20-point clusters lie close to the bunny's surface (about
+  // 15 cm across): well under a millimetre on average.
+  EXPECT_LT(run.Figure("PointToPlaneMean"), 1e-3);
+  // The simplifier's own arrays are carried through, with the error.
+  for (const char* name : { "KeyPoint", "ClusterSize", "Normals", "Error", "MeanCurvature" })
+  {
+    EXPECT_NE(out->GetPointData()->GetArray(name), nullptr) << name;
+  }
+  EXPECT_EQ(run.Messages->Warnings + run.Messages->Errors, 0);
+}
+
+TEST(KeyPointError, BadInputs)
+{
+  auto sphere = ToPolyData(Sphere(2000, 1.0));
+  {
+    ErrorRun run; // empty simplified cloud
+    EXPECT_EQ(run.Execute(sphere, vtkNew<vtkPolyData>())->GetNumberOfPoints(), 0);
+    EXPECT_EQ(run.Messages->Errors, 1);
+  }
+  {
+    ErrorRun run; // the inputs swapped: a warning, figures still computed
+    auto small = ToPolyData(Sphere(100, 1.0, 9));
+    run.Execute(small, sphere);
+    EXPECT_EQ(run.Messages->Warnings, 1);
+    EXPECT_GT(run.Figure("HausdorffDistance"), 0.0);
+  }
+  {
+    ErrorRun run; // disjoint clouds: a warning, and the distance between them
+    auto far = ToPolyData(Sphere(200, 1.0, 3, 100, 0, 0));
+    run.Execute(sphere, far);
+    EXPECT_EQ(run.Messages->Warnings, 1);
+    EXPECT_GT(run.Figure("MeanDistanceSimplifiedToOriginal"), 97.0);
+  }
+  {
+    ErrorRun run; // NaN points: skipped, their error is NaN
+    Cloud c = Sphere(200, 1.0, 5);
+    Add(c, std::nan(""), 0, 0);
+    vtkPolyData* out = run.Execute(sphere, ToPolyData(c));
+    EXPECT_EQ(run.Messages->Warnings, 1);
+    ASSERT_EQ(out->GetNumberOfPoints(), 201);
+    EXPECT_TRUE(std::isnan(out->GetPointData()->GetArray("Error")->GetTuple1(200)));
+    EXPECT_TRUE(std::isfinite(out->GetPointData()->GetArray("Error")->GetTuple1(0)));
+    EXPECT_EQ(run.Figure("NumberOfSimplifiedPoints"), 200.0);
+  }
+}
+
+TEST(Curvature, ASMOutputOnASphereHasMeanCurvatureOneOverR)
+{
+  for (double r : { 0.5, 2.0 })
+  {
+    FilterRun run;
+    run.Filter->SetOutputFraction(0.1);
+    vtkPolyData* out = run.Execute(ToPolyData(Sphere(20000, r, 2)));
+    vtkDataArray* h = out->GetPointData()->GetArray("MeanCurvature");
+    ASSERT_NE(h, nullptr);
+    EXPECT_NEAR(Median(h), 1.0 / r, 0.05 / r) << "outward normals: positive";
+    EXPECT_EQ(out->GetPointData()->GetScalars(), h);
+    ASSERT_NE(out->GetPointData()->GetArray("NeighborhoodSurfaceVariation"), nullptr);
+  }
+  // Off: no curvature arrays.
+  FilterRun off;
+  off.Filter->GenerateCurvatureOff();
+  vtkPolyData* out = off.Execute(ToPolyData(Sphere(2000, 1.0)));
+  EXPECT_EQ(out->GetPointData()->GetArray("MeanCurvature"), nullptr);
+}
+
+TEST(Curvature, PlaneHasZeroMeanCurvatureInBothFilters)
+{
+  auto plane = ToPolyData(GridSurface(100, 1.0, [](double x, double y) { return 0.2 * x - 0.1 * y; }));
+  FilterRun run;
+  vtkPolyData* out = run.Execute(plane);
+  vtkDataArray* h = out->GetPointData()->GetArray("MeanCurvature");
+  ASSERT_NE(h, nullptr);
+  for (vtkIdType i = 0; i < h->GetNumberOfTuples(); ++i)
+  {
+    EXPECT_NEAR(h->GetTuple1(i), 0.0, 1e-6);
+  }
+  ErrorRun error;
+  vtkPolyData* measured = error.Execute(plane, out);
+  vtkDataArray* he = measured->GetPointData()->GetArray("MeanCurvature");
+  ASSERT_NE(he, nullptr);
+  EXPECT_NEAR(Median(he), 0.0, 1e-6);
+}

@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of the kd-tree (Core/Neighbors): k nearest, nearest and radius
+// queries against brute force, with duplicates, ties and degenerate clouds.
+#include "Core/Neighbors.h"
+
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <string>
+#include <thread>
+#include <utility>
+
+using asmcore::Index;
+using asmtest::Cloud;
+
+namespace
+{
+using Ranked = std::vector<std::pair<double, Index>>;
+
+// The `keep` first points of (c, ids) by (squared distance to p, id). The
+// distance is evaluated exactly as the tree does, so ties compare equal.
+Ranked BruteForce(const Cloud& c, const std::vector<Index>& ids, const double p[3],
+  std::size_t keep = std::numeric_limits<std::size_t>::max())
+{
+  Ranked all;
+  for (Index id : ids)
+  {
+    const double dx = c[3 * id] - p[0];
+    const double dy = c[3 * id + 1] - p[1];
+    const double dz = c[3 * id + 2] - p[2];
+    all.emplace_back(dx * dx + dy * dy + dz * dz, id);
+  }
+  keep = std::min(keep, all.size());
+  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(keep), all.end());
+  all.resize(keep);
+  return all;
+}
+
+void ExpectSame(const Ranked& expected, const std::vector<Index>& ids,
+  const std::vector<double>& sqDist, const std::string& what)
+{
+  ASSERT_EQ(expected.size(), ids.size()) << what;
+  ASSERT_EQ(expected.size(), sqDist.size()) << what;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    ASSERT_EQ(expected[i].second, ids[i]) << what << " rank " << i;
+    ASSERT_EQ(expected[i].first, sqDist[i]) << what << " rank " << i;
+  }
+}
+
+// A test cloud: `unique` random points (uniform in [0, 1]^3, or on the
+// integer lattice [0, 4]^3 when `lattice`, which makes many exact ties),
+// plus `duplicates` copies of random earlier points. The ids used are a
+// shuffled subset (every id but those = 3 mod 7), to check id mapping.
+struct TestCloud
+{
+  Cloud Points;
+  std::vector<Index> Ids;
+};
+
+TestCloud MakeCloud(std::size_t unique, std::size_t duplicates, bool lattice, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::uniform_int_distribution<int> cell(0, 4);
+  TestCloud t;
+  for (std::size_t i = 0; i < unique; ++i)
+  {
+    if (lattice)
+    {
+      asmtest::Add(t.Points, cell(rng), cell(rng), cell(rng));
+    }
+    else
+    {
+      asmtest::Add(t.Points, uniform(rng), uniform(rng), uniform(rng));
+    }
+  }
+  for (std::size_t i = 0; i < duplicates && unique > 0; ++i)
+  {
+    const std::size_t from = std::uniform_int_distribution<std::size_t>(0, unique - 1)(rng);
+    asmtest::Add(t.Points, t.Points[3 * from], t.Points[3 * from + 1], t.Points[3 * from + 2]);
+  }
+  for (Index id = 0; id < static_cast<Index>(t.Points.size() / 3); ++id)
+  {
+    if (id % 7 != 3)
+    {
+      t.Ids.push_back(id);
+    }
+  }
+  std::shuffle(t.Ids.begin(), t.Ids.end(), rng);
+  return t;
+}
+
+// Query positions: random ones around the cloud (some far outside), points
+// of the cloud, and, for lattices, lattice and half-lattice points.
+std::vector<std::array<double, 3>> MakeQueries(const TestCloud& t, bool lattice, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::vector<std::array<double, 3>> q;
+  const double scale = lattice ? 4.0 : 1.0;
+  std::uniform_real_distribution<double> around(-0.5 * scale, 1.5 * scale);
+  for (int i = 0; i < 25; ++i)
+  {
+    q.push_back({ around(rng), around(rng), around(rng) });
+  }
+  q.push_back({ 100.0 * scale, -50.0 * scale, 3.0 });
+  for (std::size_t i = 0; i < t.Ids.size() && i < 15; ++i)
+  {
+    const double* p = t.Points.data() + 3 * t.Ids[i];
+    q.push_back({ p[0], p[1], p[2] });
+  }
+  if (lattice)
+  {
+    std::uniform_int_distribution<int> half(0, 8);
+    for (int i = 0; i < 15; ++i)
+    {
+      q.push_back({ 0.5 * half(rng), 0.5 * half(rng), 0.5 * half(rng) });
+    }
+  }
+  return q;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+TEST(Neighbors, EmptyCloudAnswersNothing)
+{
+  const double p[3] = { 0, 0, 0 };
+  std::vector<Index> ids = { 42 };
+  std::vector<double> d = { 1.0 };
+  const asmcore::Neighbors unbuilt;
+  const Cloud none;
+  const asmcore::Neighbors built(none.data(), {});
+  for (const asmcore::Neighbors* tree : { &unbuilt, &built })
+  {
+    EXPECT_TRUE(tree->Empty());
+    tree->KNearest(p, 5, ids, d);
+    EXPECT_TRUE(ids.empty());
+    EXPECT_TRUE(d.empty());
+    const asmcore::NearestPoint nearest = tree->Nearest(p);
+    EXPECT_EQ(-1, nearest.Id);
+    EXPECT_TRUE(std::isinf(nearest.Distance));
+    ids = { 1 };
+    tree->Radius(p, 10.0, ids);
+    EXPECT_TRUE(ids.empty());
+  }
+}
+
+TEST(Neighbors, KNearestMatchesBruteForce)
+{
+  unsigned seed = 11;
+  for (bool lattice : { false, true })
+  {
+    for (std::size_t n : { 1, 2, 9, 60, 400, 3000 })
+    {
+      const TestCloud t = MakeCloud(n, n / 4 + (n > 1 ? 1 : 0), lattice, ++seed);
+      const asmcore::Neighbors tree(t.Points.data(), t.Ids);
+      const int size = static_cast<int>(t.Ids.size());
+      ASSERT_EQ(size, tree.Size());
+      std::vector<Index> ids;
+      std::vector<double> d;
+      for (const auto& q : MakeQueries(t, lattice, seed))
+      {
+        const Ranked all = BruteForce(t.Points, t.Ids, q.data());
+        for (int k : { 1, 2, 5, 20, 32, 33, 100, size - 1, size, size + 7 })
+        {
+          if (k <= 0)
+          {
+            continue;
+          }
+          tree.KNearest(q.data(), k, ids, d);
+          const Ranked expected(all.begin(), all.begin() + std::min(k, size));
+          ExpectSame(expected, ids, d,
+            "n=" + std::to_string(n) + " lattice=" + std::to_string(lattice) +
+              " k=" + std::to_string(k));
+        }
+        const asmcore::NearestPoint nearest = tree.Nearest(q.data());
+        ASSERT_EQ(all.front().second, nearest.Id);
+        ASSERT_EQ(std::sqrt(all.front().first), nearest.Distance);
+      }
+    }
+  }
+}
+
+TEST(Neighbors, RadiusMatchesBruteForce)
+{
+  unsigned seed = 101;
+  for (bool lattice : { false, true })
+  {
+    for (std::size_t n : { 1, 50, 2000 })
+    {
+      const TestCloud t = MakeCloud(n, n / 3, lattice, ++seed);
+      const asmcore::Neighbors tree(t.Points.data(), t.Ids);
+      std::vector<Index> ids, ids2;
+      std::vector<double> d;
+      for (const auto& q : MakeQueries(t, lattice, seed))
+      {
+        const Ranked all = BruteForce(t.Points, t.Ids, q.data());
+        const double unit = lattice ? 4.0 : 1.0;
+        for (double r : { 0.0, 0.02, 0.1, 0.3, 1.0, 2.0 })
+        {
+          const double radius = r * unit;
+          Ranked expected;
+          for (const auto& e : all)
+          {
+            if (e.first <= radius * radius)
+            {
+              expected.push_back(e);
+            }
+          }
+          tree.Radius(q.data(), radius, ids, d);
+          ExpectSame(expected, ids, d, "n=" + std::to_string(n) + " r=" + std::to_string(radius));
+          tree.Radius(q.data(), radius, ids2);
+          ASSERT_EQ(ids, ids2);
+        }
+      }
+    }
+  }
+}
+
+TEST(Neighbors, BadArgumentsGiveEmptyResults)
+{
+  const TestCloud t = MakeCloud(100, 0, false, 5);
+  const asmcore::Neighbors tree(t.Points.data(), t.Ids);
+  std::vector<Index> ids;
+  std::vector<double> d;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double bad[3] = { 0.5, nan, 0.5 };
+  const double good[3] = { 0.5, 0.5, 0.5 };
+  tree.KNearest(bad, 3, ids, d);
+  EXPECT_TRUE(ids.empty());
+  tree.KNearest(good, 0, ids, d);
+  EXPECT_TRUE(ids.empty());
+  EXPECT_EQ(-1, tree.Nearest(bad).Id);
+  tree.Radius(bad, 1.0, ids);
+  EXPECT_TRUE(ids.empty());
+  tree.Radius(good, -1.0, ids);
+  EXPECT_TRUE(ids.empty());
+  tree.Radius(good, nan, ids);
+  EXPECT_TRUE(ids.empty());
+}
+
+TEST(Neighbors, MillionIdenticalPoints)
+{
+  const Index n = 1000000;
+  Cloud c;
+  c.reserve(3 * n + 300);
+  for (Index i = 0; i < n; ++i)
+  {
+    asmtest::Add(c, 1.5, -2.0, 0.25);
+  }
+  std::vector<Index> all(n);
+  std::iota(all.begin(), all.end(), Index(0));
+  const asmcore::Neighbors tree(c.data(), all);
+  ASSERT_EQ(n, tree.Size());
+
+  std::vector<Index> ids;
+  std::vector<double> d;
+  std::vector<Index> first20(20);
+  std::iota(first20.begin(), first20.end(), Index(0));
+  const double at[3] = { 1.5, -2.0, 0.25 };
+  const double away[3] = { 4.5, 2.0, 0.25 }; // distance 5
+  for (const double* q : { at, away })
+  {
+    tree.KNearest(q, 20, ids, d);
+    EXPECT_EQ(first20, ids); // ties: smallest ids
+    EXPECT_EQ(std::vector<double>(20, q == at ? 0.0 : 25.0), d);
+    EXPECT_EQ(0, tree.Nearest(q).Id);
+    tree.KNearest(q, 1000, ids, d); // heap path
+    ASSERT_EQ(1000u, ids.size());
+    EXPECT_EQ(999, ids.back());
+  }
+  tree.Radius(at, 0.0, ids);
+  EXPECT_EQ(all, ids);
+  tree.Radius(away, 4.999, ids);
+  EXPECT_TRUE(ids.empty());
+
+  // The same heap of duplicates with 200 scattered points interleaved: the
+  // tree must split around the pile and still break ties by id.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < 200; ++i)
+  {
+    asmtest::Add(c, u(rng), u(rng), u(rng));
+  }
+  std::vector<Index> mixed(static_cast<std::size_t>(c.size() / 3));
+  std::iota(mixed.begin(), mixed.end(), Index(0));
+  std::shuffle(mixed.begin(), mixed.end(), rng);
+  const asmcore::Neighbors tree2(c.data(), mixed);
+  for (int i = 0; i < 6; ++i)
+  {
+    const double q[3] = { u(rng), u(rng), u(rng) };
+    tree2.KNearest(q, 30, ids, d);
+    ExpectSame(BruteForce(c, mixed, q, 30), ids, d, "mixed");
+  }
+  tree2.KNearest(at, 5, ids, d);
+  EXPECT_EQ(std::vector<Index>({ 0, 1, 2, 3, 4 }), ids);
+}
+
+TEST(Neighbors, ConcurrentQueriesAgree)
+{
+  const TestCloud t = MakeCloud(20000, 100, false, 21);
+  const asmcore::Neighbors tree(t.Points.data(), t.Ids);
+  const std::size_t queries = 4000;
+  const int k = 12;
+  auto run = [&](std::size_t begin, std::size_t end, std::vector<Index>& out) {
+    std::vector<Index> ids;
+    std::vector<double> d;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double* p = t.Points.data() + 3 * t.Ids[i];
+      tree.KNearest(p, k, ids, d);
+      std::copy(ids.begin(), ids.end(), out.begin() + static_cast<std::ptrdiff_t>(k * i));
+    }
+  };
+  std::vector<Index> sequential(k * queries), threaded(k * queries);
+  run(0, queries, sequential);
+  std::vector<std::thread> pool;
+  for (std::size_t w = 0; w < 4; ++w)
+  {
+    pool.emplace_back(run, queries * w / 4, queries * (w + 1) / 4, std::ref(threaded));
+  }
+  for (auto& thread : pool)
+  {
+    thread.join();
+  }
+  EXPECT_EQ(sequential, threaded);
+}
