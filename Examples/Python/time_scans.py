@@ -1,7 +1,7 @@
 """Time vtkASMSimplify on PLY scans and print one line per scan (pvpython).
 
     PYTHONPATH=build/lib/python3/dist-packages pvpython Examples/Python/time_scans.py \
-        [--fraction 0.05] [--runs 5] [--threads 0] scan.ply [scan.ply ...]
+        [--fraction 0.05] [--runs 5] [--threads 0] [--no-curvature] scan.ply [scan.ply ...]
 
 Prints N, N_s, the median wall time of --runs executions of the filter alone
 (reading excluded), AKPE, MKPE, the number of key points and the cell size.
@@ -24,6 +24,7 @@ def main():
     parser.add_argument("--fraction", type=float, default=0.05)
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--no-curvature", action="store_true", help="GenerateCurvature off")
     args = parser.parse_args()
     if args.threads > 0:
         vtkSMPTools.SetBackend("STDThread")
@@ -37,6 +38,7 @@ def main():
         asm = vtkASMSimplify()
         asm.SetInputData(reader.GetOutput())
         asm.SetOutputFraction(args.fraction)
+        asm.SetGenerateCurvature(not args.no_curvature)
         times = []
         for _ in range(args.runs):
             asm.Modified()
