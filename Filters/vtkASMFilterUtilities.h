@@ -11,9 +11,11 @@
 #include "Core/Curvature.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
@@ -64,6 +66,22 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tup
   array->SetNumberOfComponents(components);
   array->SetNumberOfTuples(tuples);
   return array;
+}
+
+/// One vertex cell per point, for n points: what ParaView renders.
+inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
+{
+  auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
+  auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->SetData(offsets, connectivity);
+  return verts;
 }
 
 /// Adds (or replaces) a one-value double array in `fd`.

@@ -288,8 +288,6 @@ int vtkASMSimplify::RequestData(
       input->GetPoints()->GetDataType() == VTK_DOUBLE);
   points->SetDataType(doublePrecision ? VTK_DOUBLE : VTK_FLOAT);
   points->SetNumberOfPoints(count);
-  auto offsets = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, count + 1);
-  auto connectivity = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, count);
   auto keyFlags = asmvtk::NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
   auto clusterSizes = asmvtk::NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
   auto variation = asmvtk::NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
@@ -300,19 +298,14 @@ int vtkASMSimplify::RequestData(
   {
     const asmcore::Sample& sample = result.Samples[s];
     points->SetPoint(s, sample.Position);
-    connectivity->SetValue(s, s);
-    offsets->SetValue(s, s);
     keyFlags->SetValue(s, sample.Key ? 1 : 0);
     clusterSizes->SetValue(s, sample.ClusterSize);
     variation->SetValue(s, sample.SurfaceVariation);
     originalIds->SetValue(s, sample.Representative);
     pcaNormals->SetTuple(s, sample.Normal);
   }
-  offsets->SetValue(count, count);
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
   output->SetPoints(points);
-  output->SetVerts(verts);
+  output->SetVerts(asmvtk::VertexCells(count));
   this->UpdateProgress(this->GenerateCurvature ? 0.72 : 0.95);
 
   // Point data: the input's arrays aggregated, then the generated ones.

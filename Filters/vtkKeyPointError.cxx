@@ -148,17 +148,7 @@ int vtkKeyPointError::RequestData(
   // The simplified cloud, one vertex per point, its arrays, and the errors.
   const vtkIdType n = simplified->GetNumberOfPoints();
   output->SetPoints(simplified->GetPoints());
-  auto offsets = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
-  auto connectivity = asmvtk::NewArray<vtkIdTypeArray>(nullptr, 1, n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    offsets->SetValue(i, i);
-    connectivity->SetValue(i, i);
-  }
-  offsets->SetValue(n, n);
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
+  output->SetVerts(asmvtk::VertexCells(n));
   vtkPointData* pd = output->GetPointData();
   pd->PassData(simplified->GetPointData());
   auto error = asmvtk::NewArray<vtkDoubleArray>("Error", 1, n);
