@@ -36,13 +36,25 @@ expected_defaults = {
     "CurvatureWeight": 1.0,
     "RandomSeed": 1,
     "SnapToInputPoints": 0,
+    "GenerateCurvature": 1,
+    "CurvatureNeighbors": 20,
     "OutputPointsPrecision": "Same as input",
 }
+# Nothing in the XML that the test does not know about.
+listed = set(asm.ListProperties()) - {"Input"}
+assert listed == set(expected_defaults), "untested or missing properties: %r" % (
+    listed ^ set(expected_defaults))
 for name, value in expected_defaults.items():
     actual = asm.GetPropertyValue(name)
     assert actual == value, "%s: %r != %r" % (name, actual, value)
     doc = asm.GetProperty(name).SMProperty.GetDocumentation()
     assert doc is not None and doc.GetDescription().strip(), name + " has no documentation"
+# Ranges and panel visibility of the curvature properties.
+neighbors = asm.GetProperty("CurvatureNeighbors").SMProperty
+neighbors_range = neighbors.GetDomain("range")
+assert (neighbors_range.GetMinimum(0), neighbors_range.GetMaximum(0)) == (6, 1000)
+assert neighbors.GetPanelVisibility() == "advanced"
+assert asm.GetProperty("GenerateCurvature").SMProperty.GetPanelVisibility() == "default"
 print("properties, defaults and documentation OK")
 
 # Menu entry and display hints.
@@ -67,10 +79,20 @@ print("N = %d, N_s = %d (expected %d)" % (n_in, n_out, expected))
 assert n_out == expected, "got %d points, expected %d" % (n_out, expected)
 
 point_data = out.GetPointData()
-for name in ("KeyPoint", "ClusterSize", "SurfaceVariation", "Normals", "vtkOriginalPointIds"):
+for name in ("KeyPoint", "ClusterSize", "SurfaceVariation", "Normals", "vtkOriginalPointIds",
+             "MeanCurvature", "NeighborhoodSurfaceVariation"):
     assert point_data.GetArray(name) is not None, "missing point array " + name
     assert point_data.GetArray(name).GetNumberOfTuples() == n_out, name
 print("TestPluginLoad: OutputFraction OK")
+
+# GenerateCurvature off drops the curvature arrays.
+asm.GenerateCurvature = 0
+asm.UpdatePipeline()
+point_data = servermanager.Fetch(asm).GetPointData()
+for name in ("MeanCurvature", "NeighborhoodSurfaceVariation"):
+    assert point_data.GetArray(name) is None, name + " present with GenerateCurvature off"
+asm.GenerateCurvature = 1
+print("TestPluginLoad: GenerateCurvature OK")
 
 # The other target mode, through the enumeration and the id-type property.
 asm.TargetMode = "Number Of Output Points"
