@@ -17,16 +17,11 @@
 #include <set>
 
 using asmcore::Index;
+using asmtest::AllIds;
 using asmtest::Cloud;
 
 namespace
 {
-std::vector<Index> AllIds(const Cloud& c)
-{
-  std::vector<Index> ids(c.size() / 3);
-  std::iota(ids.begin(), ids.end(), Index(0));
-  return ids;
-}
 
 // The points of a cloud in their PCA frame.
 asmcore::LocalPoints ToFrame(const Cloud& c, asmcore::CellFrame& frame)

@@ -23,16 +23,11 @@
 
 using asmcore::CurvatureEstimate;
 using asmcore::Index;
+using asmtest::AllIds;
 using asmtest::Cloud;
 
 namespace
 {
-std::vector<Index> AllIds(const Cloud& c)
-{
-  std::vector<Index> ids(c.size() / 3);
-  std::iota(ids.begin(), ids.end(), Index(0));
-  return ids;
-}
 
 // An Execution that cuts each range into `threads` parts run on threads.
 asmcore::Execution Threaded(int threads)

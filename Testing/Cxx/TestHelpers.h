@@ -54,6 +54,17 @@ inline Cloud Sphere(std::size_t n, double radius, unsigned seed = 7, double cx =
   return c;
 }
 
+/// The ids 0 .. N-1 of a cloud's points.
+inline std::vector<std::int64_t> AllIds(const Cloud& c)
+{
+  std::vector<std::int64_t> ids(c.size() / 3);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    ids[i] = static_cast<std::int64_t>(i);
+  }
+  return ids;
+}
+
 inline std::string DataFile(const std::string& name)
 {
   return std::string(ASM_TEST_DATA_DIR) + "/" + name;

@@ -1,23 +1,15 @@
 """pvpython test: load the ASM plugin, simplify the Stanford bunny to 5 %.
 
-Environment (set by CTest, see CMakeLists.txt):
-  ASM_PLUGIN    path of the plugin library (or give it as the first argument)
-  ASM_DATA_DIR  Testing/Data
+Set-up (plugin and data paths): asm_test_setup.py.
 """
 import os
-import sys
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 
-here = os.path.dirname(os.path.abspath(__file__))
-plugin = sys.argv[1] if len(sys.argv) > 1 else os.environ.get("ASM_PLUGIN")
-data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(here, "..", "Data"))
-if not plugin or not os.path.isfile(plugin):
-    sys.exit("TestPluginLoad: plugin not found (ASM_PLUGIN=%r)" % plugin)
+from asm_test_setup import load_asm_plugin
 
-LoadPlugin(plugin, ns=globals())
-print("loaded plugin", plugin)
+data_dir = load_asm_plugin("TestPluginLoad", globals())
 
 reader = PLYReader(FileNames=[os.path.join(data_dir, "bunny.ply")])
 asm = ASMSimplify(Input=reader, OutputFraction=0.05)  # noqa: F405
