@@ -62,16 +62,22 @@ public:
   int Errors = 0;
 };
 
-/// A vtkASMSimplify whose warnings and errors are counted.
-struct FilterRun
+/// A filter whose warnings and errors are counted.
+template <typename FilterT>
+struct ObservedFilter
 {
-  vtkNew<vtkASMSimplify> Filter;
+  vtkNew<FilterT> Filter;
   vtkNew<MessageCounter> Messages;
-  FilterRun()
+  ObservedFilter()
   {
     this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
     this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
   }
+};
+
+/// A vtkASMSimplify whose warnings and errors are counted.
+struct FilterRun : ObservedFilter<vtkASMSimplify>
+{
   vtkPolyData* Execute(vtkDataObject* input)
   {
     this->Filter->SetInputData(input);

@@ -18,15 +18,8 @@ using namespace asmtest;
 
 namespace
 {
-struct ErrorRun
+struct ErrorRun : ObservedFilter<vtkKeyPointError>
 {
-  vtkNew<vtkKeyPointError> Filter;
-  vtkNew<MessageCounter> Messages;
-  ErrorRun()
-  {
-    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
-    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
-  }
   vtkPolyData* Execute(vtkDataObject* original, vtkDataObject* simplified)
   {
     this->Filter->SetInputData(0, original);
