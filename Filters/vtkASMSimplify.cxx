@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -207,9 +208,9 @@ int vtkASMSimplify::RequestData(
   }
 
   // Coordinates, finite points, and the requested output size.
-  std::vector<double> coordinateCopy;
-  const double* xyz = asmvtk::CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
-  const std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
+  std::unique_ptr<double[]> coordinateCopy;
+  std::vector<Index> ids;
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids);
   const auto valid = static_cast<vtkIdType>(ids.size());
   const vtkIdType skipped = numberOfPoints - valid;
   if (skipped > 0)

@@ -82,6 +82,50 @@ Index BlockCount(Index n, Index maxBlocks, Index minBlockSize)
   return std::max<Index>(1, std::min<Index>(maxBlocks, n / minBlockSize));
 }
 
+// GridSpec::CellOf without divisions, same result: x * (1 / h) is within a
+// few ulps of x / h, so their floors agree unless x / h is within 1e-8 of an
+// integer (the grid spans at most 2^21 cells: the error is below 1e-9); then
+// the division decides.
+struct FastCellOf
+{
+  explicit FastCellOf(const GridSpec& spec)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Origin[a] = spec.Origin[a];
+      this->Top[a] = static_cast<double>(spec.Dims[a] - 1);
+    }
+    this->Size = spec.CellSize;
+    this->Inverse = 1.0 / spec.CellSize;
+  }
+  // Kept in the object (not read through a reference) so that the compiler
+  // can hold them in registers across the stores of the loop.
+  void operator()(const double p[3], std::uint64_t ijk[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = p[a] - this->Origin[a];
+      // Clamping before the floor gives the same cell as after it; then the
+      // truncation is the floor (no branchy std::floor).
+      const double r = std::min(std::max(x * this->Inverse, 0.0), this->Top[a]);
+      std::uint64_t k = static_cast<std::uint64_t>(r);
+      const double frac = r - static_cast<double>(k);
+      if (!(frac > 1e-8 && frac < 1.0 - 1e-8))
+      {
+        // Near a cell border (or clamped): exactly as GridSpec::CellOf.
+        double t = std::floor(x / this->Size);
+        t = std::min(std::max(t, 0.0), this->Top[a]);
+        k = static_cast<std::uint64_t>(t);
+      }
+      ijk[a] = k;
+    }
+  }
+  double Origin[3];
+  double Top[3];
+  double Size;
+  double Inverse;
+};
+
 // One bit per cell of the grid (cells numbered x + D0 (y + D1 z), which is
 // the order of the packed keys), set concurrently without locks.
 class OccupancyBitmap
@@ -108,6 +152,11 @@ public:
     }
     return true;
   }
+  struct Numbering
+  {
+    std::uint64_t D0, D01;
+  };
+  Numbering GetNumbering() const { return { this->D0, this->D01 }; }
   std::uint64_t Linear(const std::uint64_t ijk[3]) const
   {
     return ijk[0] + this->D0 * ijk[1] + this->D01 * ijk[2];
@@ -236,10 +285,13 @@ private:
 // grids too large for a bitmap).
 void InsertKeys(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, KeyTable& table)
 {
+  const FastCellOf cellOf(spec);
   std::uint64_t last = KeyTable::Empty;
   for (Index id : ids)
   {
-    const std::uint64_t key = spec.KeyOf(xyz + 3 * id);
+    std::uint64_t ijk[3];
+    cellOf(xyz + 3 * id, ijk);
+    const std::uint64_t key = (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
     if (key != last)
     {
       table.Insert(key);
@@ -254,12 +306,15 @@ void MarkCells(const double* xyz, const std::vector<Index>& ids, const GridSpec&
   OccupancyBitmap& bitmap, std::uint64_t* linear, const Execution& execution)
 {
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
+    const FastCellOf cellOf(spec); // a local copy: registers, no aliasing with the stores
+    const OccupancyBitmap::Numbering numbering = bitmap.GetNumbering();
+    const Index* id = ids.data();
     std::uint64_t last = ~std::uint64_t(0);
     for (Index i = b; i < e; ++i)
     {
       std::uint64_t ijk[3];
-      spec.CellOf(xyz + 3 * ids[i], ijk);
-      const std::uint64_t lin = bitmap.Linear(ijk);
+      cellOf(xyz + 3 * id[i], ijk);
+      const std::uint64_t lin = ijk[0] + numbering.D0 * ijk[1] + numbering.D01 * ijk[2];
       if (linear)
       {
         linear[i] = lin;
@@ -401,9 +456,12 @@ CellGrid BuildCellGrid(
       table.ValueOf(grid.CellKey[c]) = static_cast<Index>(c);
     }
     execution.Run(0, n, [&](Index b, Index e) {
+      const FastCellOf cellOf(spec);
       for (Index i = b; i < e; ++i)
       {
-        cell[i] = static_cast<std::uint64_t>(table.Find(spec.KeyOf(xyz + 3 * ids[i])));
+        std::uint64_t ijk[3];
+        cellOf(xyz + 3 * ids[i], ijk);
+        cell[i] = static_cast<std::uint64_t>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
       }
     });
   }

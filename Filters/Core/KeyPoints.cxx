@@ -83,6 +83,79 @@ std::int64_t BinOf(double u, double side)
   const double lim = 4.0e18;
   return static_cast<std::int64_t>(std::max(-lim, std::min(lim, t)));
 }
+
+// The clusters of `subset` given the components of positions in `sets`.
+Clusters Components(const std::vector<Index>& subset, DisjointSets& sets)
+{
+  Clusters out;
+  const std::size_t n = subset.size();
+  // Roots are the smallest position of each component, so walking positions
+  // in order meets components in order of their first member.
+  std::vector<Index> label(n, -1);
+  std::vector<Index> counts;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Index root = sets.Find(static_cast<Index>(i));
+    if (label[root] < 0)
+    {
+      label[root] = static_cast<Index>(counts.size());
+      counts.push_back(0);
+    }
+    ++counts[label[root]];
+  }
+  out.Offsets.assign(counts.size() + 1, 0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    out.Offsets[k + 1] = out.Offsets[k] + counts[k];
+  }
+  out.Members.resize(n);
+  std::vector<Index> fill(out.Offsets.begin(), out.Offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out.Members[fill[label[sets.Find(static_cast<Index>(i))]]++] = subset[i];
+  }
+  return out;
+}
+
+// LinkInPlane for a few points (the usual band of a cell): the same links as
+// the binned search (same bin, or at most two bins apart and within d),
+// testing the pairs directly instead of sorting bins.
+Clusters LinkFewInPlane(const LocalPoints& q, const std::vector<Index>& subset, double side, double d2)
+{
+  const std::size_t n = subset.size();
+  std::int64_t bx[64], by[64];
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d& p = q[subset[i]];
+    bx[i] = BinOf(p[0], side);
+    by[i] = BinOf(p[1], side);
+  }
+  DisjointSets sets(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d& p = q[subset[i]];
+    for (std::size_t j = i + 1; j < n; ++j)
+    {
+      const std::int64_t ex = bx[j] - bx[i], ey = by[j] - by[i];
+      if (ex < -2 || ex > 2 || ey < -2 || ey > 2)
+      {
+        continue;
+      }
+      bool link = ex == 0 && ey == 0;
+      if (!link)
+      {
+        const Eigen::Vector3d& r = q[subset[j]];
+        const double dx2 = p[0] - r[0], dy2 = p[1] - r[1];
+        link = dx2 * dx2 + dy2 * dy2 <= d2;
+      }
+      if (link)
+      {
+        sets.Union(static_cast<Index>(i), static_cast<Index>(j));
+      }
+    }
+  }
+  return Components(subset, sets);
+}
 } // namespace
 
 Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, double linkDistance)
@@ -102,6 +175,10 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
   // connected; points closer than d lie at most two bins apart.
   const double side = 0.5 * linkDistance;
   const double d2 = linkDistance * linkDistance;
+  if (n <= 64)
+  {
+    return LinkFewInPlane(q, subset, side, d2);
+  }
   std::vector<std::pair<BinKey, Index>> binned(n); // (bin, position in subset)
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -170,32 +247,7 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
       }
     }
   }
-  // Roots are the smallest position of each component, so walking positions
-  // in order meets components in order of their first member.
-  std::vector<Index> label(n, -1);
-  std::vector<Index> counts;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Index root = sets.Find(static_cast<Index>(i));
-    if (label[root] < 0)
-    {
-      label[root] = static_cast<Index>(counts.size());
-      counts.push_back(0);
-    }
-    ++counts[label[root]];
-  }
-  out.Offsets.assign(counts.size() + 1, 0);
-  for (std::size_t k = 0; k < counts.size(); ++k)
-  {
-    out.Offsets[k + 1] = out.Offsets[k] + counts[k];
-  }
-  out.Members.resize(n);
-  std::vector<Index> fill(out.Offsets.begin(), out.Offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    out.Members[fill[label[sets.Find(static_cast<Index>(i))]]++] = subset[i];
-  }
-  return out;
+  return Components(subset, sets);
 }
 
 void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out)
