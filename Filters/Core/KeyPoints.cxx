@@ -117,44 +117,123 @@ Clusters Components(const std::vector<Index>& subset, DisjointSets& sets)
   return out;
 }
 
-// LinkInPlane for a few points (the usual band of a cell): the same links as
-// the binned search (same bin, or at most two bins apart and within d),
-// testing the pairs directly instead of sorting bins.
-Clusters LinkFewInPlane(const LocalPoints& q, const std::vector<Index>& subset, double side, double d2)
+// LinkInPlane when the bins touched by the points fit in a small dense
+// array (the usual band of a cell): the same links as the sorted-bin search
+// (same bin, or at most two bins apart and within d), found through the
+// array instead of binary searches (the same components). Returns false, doing nothing, when the
+// array would be too large.
+bool LinkDenseInPlane(const LocalPoints& q, const std::vector<Index>& subset, double side,
+  double d2, DisjointSets& sets)
 {
+  struct Scratch
+  {
+    std::vector<std::int64_t> X, Y;
+    std::vector<Index> Start, Order;
+  };
+  thread_local Scratch scratch; // reused by the cells a thread processes
   const std::size_t n = subset.size();
-  std::int64_t bx[64], by[64];
+  scratch.X.resize(n);
+  scratch.Y.resize(n);
+  std::int64_t lo[2] = { 0, 0 }, hi[2] = { 0, 0 };
   for (std::size_t i = 0; i < n; ++i)
   {
     const Eigen::Vector3d& p = q[subset[i]];
-    bx[i] = BinOf(p[0], side);
-    by[i] = BinOf(p[1], side);
+    const std::int64_t x = BinOf(p[0], side), y = BinOf(p[1], side);
+    scratch.X[i] = x;
+    scratch.Y[i] = y;
+    lo[0] = i == 0 ? x : std::min(lo[0], x);
+    hi[0] = i == 0 ? x : std::max(hi[0], x);
+    lo[1] = i == 0 ? y : std::min(lo[1], y);
+    hi[1] = i == 0 ? y : std::max(hi[1], y);
   }
-  DisjointSets sets(n);
+  // Differences of bins far apart could overflow: test in double first.
+  const double w = static_cast<double>(hi[0]) - static_cast<double>(lo[0]) + 1.0;
+  const double h = static_cast<double>(hi[1]) - static_cast<double>(lo[1]) + 1.0;
+  if (!(w * h <= 4.0 * static_cast<double>(n) + 64.0))
+  {
+    return false;
+  }
+  const std::int64_t width = hi[0] - lo[0] + 1, height = hi[1] - lo[1] + 1;
+  // Counting sort of the positions by bin (stable).
+  scratch.Start.assign(static_cast<std::size_t>(width * height + 1), 0);
   for (std::size_t i = 0; i < n; ++i)
   {
-    const Eigen::Vector3d& p = q[subset[i]];
-    for (std::size_t j = i + 1; j < n; ++j)
+    scratch.X[i] -= lo[0];
+    scratch.Y[i] -= lo[1];
+    ++scratch.Start[static_cast<std::size_t>(scratch.Y[i] * width + scratch.X[i] + 1)];
+  }
+  for (std::size_t b = 1; b < scratch.Start.size(); ++b)
+  {
+    scratch.Start[b] += scratch.Start[b - 1];
+  }
+  scratch.Order.resize(n);
+  {
+    std::vector<Index>& next = scratch.Start; // shifted by one: fill, then shift back
+    for (std::size_t i = 0; i < n; ++i)
     {
-      const std::int64_t ex = bx[j] - bx[i], ey = by[j] - by[i];
-      if (ex < -2 || ex > 2 || ey < -2 || ey > 2)
+      const auto bin = static_cast<std::size_t>(scratch.Y[i] * width + scratch.X[i]);
+      scratch.Order[static_cast<std::size_t>(next[bin]++)] = static_cast<Index>(i);
+    }
+    for (std::size_t b = next.size() - 1; b > 0; --b)
+    {
+      next[b] = next[b - 1];
+    }
+    next[0] = 0;
+  }
+  // A bin is connected (its first point joins the others); then each pair
+  // of bins at most two apart is linked by its first pair within d, unless
+  // the two bins are connected already.
+  const Index* start = scratch.Start.data();
+  const Index* order = scratch.Order.data();
+  for (std::int64_t y = 0; y < height; ++y)
+  {
+    for (std::int64_t x = 0; x < width; ++x)
+    {
+      const std::int64_t bin = y * width + x;
+      if (start[bin] == start[bin + 1])
       {
         continue;
       }
-      bool link = ex == 0 && ey == 0;
-      if (!link)
+      const Index first = order[start[bin]];
+      for (Index k = start[bin] + 1; k < start[bin + 1]; ++k)
       {
-        const Eigen::Vector3d& r = q[subset[j]];
-        const double dx2 = p[0] - r[0], dy2 = p[1] - r[1];
-        link = dx2 * dx2 + dy2 * dy2 <= d2;
+        sets.Union(first, order[k]);
       }
-      if (link)
+      // The 12 neighbours after this bin: each pair of bins once.
+      for (std::int64_t dy = 0; dy <= 2 && y + dy < height; ++dy)
       {
-        sets.Union(static_cast<Index>(i), static_cast<Index>(j));
+        for (std::int64_t dx = -2; dx <= 2; ++dx)
+        {
+          if ((dy == 0 && dx <= 0) || x + dx < 0 || x + dx >= width)
+          {
+            continue;
+          }
+          const std::int64_t other = bin + dy * width + dx;
+          if (start[other] == start[other + 1] || sets.Find(first) == sets.Find(order[start[other]]))
+          {
+            continue;
+          }
+          bool linked = false;
+          for (Index k = start[bin]; k < start[bin + 1] && !linked; ++k)
+          {
+            const Eigen::Vector3d& p = q[subset[order[k]]];
+            for (Index m = start[other]; m < start[other + 1]; ++m)
+            {
+              const Eigen::Vector3d& r = q[subset[order[m]]];
+              const double dx2 = p[0] - r[0], dy2 = p[1] - r[1];
+              if (dx2 * dx2 + dy2 * dy2 <= d2)
+              {
+                sets.Union(order[k], order[m]);
+                linked = true;
+                break;
+              }
+            }
+          }
+        }
       }
     }
   }
-  return Components(subset, sets);
+  return true;
 }
 } // namespace
 
@@ -175,9 +254,12 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
   // connected; points closer than d lie at most two bins apart.
   const double side = 0.5 * linkDistance;
   const double d2 = linkDistance * linkDistance;
-  if (n <= 64)
   {
-    return LinkFewInPlane(q, subset, side, d2);
+    DisjointSets sets(n);
+    if (LinkDenseInPlane(q, subset, side, d2, sets))
+    {
+      return Components(subset, sets);
+    }
   }
   std::vector<std::pair<BinKey, Index>> binned(n); // (bin, position in subset)
   for (std::size_t i = 0; i < n; ++i)
