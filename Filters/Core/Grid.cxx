@@ -42,18 +42,13 @@ double Bounds::MaxExtent() const
 
 namespace
 {
+// Portable and inline (without -mpopcnt, __builtin_popcountll is a call).
 int PopCount(std::uint64_t x)
 {
-#if defined(__GNUC__) || defined(__clang__)
-  return __builtin_popcountll(x);
-#else
-  int c = 0;
-  for (; x; x &= x - 1)
-  {
-    ++c;
-  }
-  return c;
-#endif
+  x = x - ((x >> 1) & 0x5555555555555555ULL);
+  x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+  x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+  return static_cast<int>((x * 0x0101010101010101ULL) >> 56);
 }
 
 int TrailingZeros(std::uint64_t x) // x != 0
