@@ -335,7 +335,7 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids);
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
     {

@@ -236,10 +236,14 @@ void TimeStages(vtkPolyData* input, double fraction)
   std::printf("    budgets                %8.1f ms\n", 1e3 * (t7 - t6));
   std::printf("    key clusters (local frame, partition, link) %8.1f ms\n", 1e3 * (t8 - t7));
   std::printf("    (sampling, assembly, output arrays: the rest of the end-to-end time)\n");
-  double t9 = Cpu();
-  Neighbors tree(xyz, ids);
-  double t10 = Cpu();
-  std::printf("    kd-tree build (curvature) %8.1f ms\n", 1e3 * (t10 - t9));
+  double kd = 1e9;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t9 = Cpu();
+    Neighbors tree(xyz, ids);
+    kd = std::min(kd, Cpu() - t9);
+  }
+  std::printf("    kd-tree build (curvature), best of 3 %8.1f ms\n", 1e3 * kd);
 }
 } // namespace
 
