@@ -24,8 +24,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h> // madvise
+#endif
 
 namespace asmvtk
 {
@@ -42,6 +47,30 @@ inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>
   const auto range = vtk::DataArrayValueRange<3>(data);
   std::copy(range.begin(), range.end(), copy.begin());
   return copy.data();
+}
+
+/// Asks the kernel to back [data, data + bytes) with huge pages where it can
+/// (Linux; a hint, no effect elsewhere). For large arrays read in random
+/// order, e.g. the coordinates gathered cell by cell: far fewer TLB misses
+/// and page faults. Call before the memory is first written.
+inline void AdviseHugePages(void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::uintptr_t huge = std::uintptr_t(1) << 21;
+  if (bytes < 4 * huge)
+  {
+    return;
+  }
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
+  if (end > begin)
+  {
+    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
 }
 
 /// The coordinates of `points` as N x 3 doubles, and in `ids` the ids of the
@@ -64,6 +93,7 @@ inline const double* PrepareCoordinates(
   else
   {
     copy.reset(new double[static_cast<std::size_t>(3 * n)]);
+    AdviseHugePages(copy.get(), static_cast<std::size_t>(3 * n) * sizeof(double));
     xyz = copy.get();
   }
   const Index blockSize = Index(1) << 15;

@@ -236,6 +236,25 @@ void TimeStages(vtkPolyData* input, double fraction)
   std::printf("    budgets                %8.1f ms\n", 1e3 * (t7 - t6));
   std::printf("    key clusters (local frame, partition, link) %8.1f ms\n", 1e3 * (t8 - t7));
   std::printf("    (sampling, assembly, output arrays: the rest of the end-to-end time)\n");
+  // Share of asmcore::Simplify's CPU time spent inside Execution loops (what
+  // a second thread can share): an Amdahl bound robust to a loaded machine.
+  {
+    double inside = 0.0;
+    asmcore::Execution counting;
+    counting.For = [&inside](Index b, Index e, const std::function<void(Index, Index)>& body) {
+      const double c0 = Cpu();
+      body(b, e);
+      inside += Cpu() - c0;
+    };
+    SimplifyParameters parameters;
+    parameters.NumberOfSamples = target;
+    parameters.CoordinateEpsilon = 1.2e-7;
+    const double c0 = Cpu();
+    const SimplifyResult result = Simplify(xyz, ids, nullptr, parameters, counting);
+    const double total = Cpu() - c0;
+    std::printf("    asmcore::Simplify %.1f ms, %.1f %% of it in parallel loops: 2-thread bound %.2fx\n",
+      1e3 * total, 100.0 * inside / total, 1.0 / ((total - inside) / total + 0.5 * inside / total));
+  }
   double kd = 1e9;
   for (int r = 0; r < 3; ++r)
   {
