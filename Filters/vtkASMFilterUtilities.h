@@ -159,6 +159,35 @@ inline const double* PrepareCoordinates(
   return xyz;
 }
 
+/// The 3-component array `data` as N x 3 doubles in `copy` (float and double
+/// arrays copied directly, in parallel; others through the generic API).
+inline const double* TuplesAsDoubles(vtkDataArray* data, std::unique_ptr<double[]>& copy)
+{
+  const vtkIdType n = data->GetNumberOfTuples();
+  copy.reset(new double[static_cast<std::size_t>(3 * n)]);
+  double* out = copy.get();
+  auto* floats = vtkFloatArray::SafeDownCast(data);
+  auto* doubles = vtkDoubleArray::SafeDownCast(data);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    if (floats)
+    {
+      const float* in = floats->GetPointer(0);
+      std::copy(in + 3 * begin, in + 3 * end, out + 3 * begin);
+    }
+    else if (doubles)
+    {
+      const double* in = doubles->GetPointer(0);
+      std::copy(in + 3 * begin, in + 3 * end, out + 3 * begin);
+    }
+    else
+    {
+      const auto range = vtk::DataArrayValueRange<3>(data, begin, end);
+      std::copy(range.begin(), range.end(), out + 3 * begin);
+    }
+  });
+  return out;
+}
+
 /// Runs the core's loops with vtkSMPTools; progress goes to `algorithm`,
 /// scaled into [from, to], and its AbortExecute flag aborts.
 inline asmcore::Execution SMPExecution(vtkAlgorithm* algorithm, double from, double to)

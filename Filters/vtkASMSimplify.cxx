@@ -233,17 +233,14 @@ int vtkASMSimplify::RequestData(
     target = valid;
   }
 
-  std::vector<double> normalCopy;
+  std::unique_ptr<double[]> normalCopy;
   const double* normals = nullptr;
   vtkPointData* inPD = input->GetPointData();
   if (vtkDataArray* inNormals = inPD->GetNormals())
   {
-    if (inNormals->GetNumberOfComponents() == 3)
+    if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
     {
-      normalCopy.resize(static_cast<std::size_t>(3 * numberOfPoints));
-      const auto range = vtk::DataArrayValueRange<3>(inNormals);
-      std::copy(range.begin(), range.end(), normalCopy.begin());
-      normals = normalCopy.data();
+      normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
     }
   }
 
