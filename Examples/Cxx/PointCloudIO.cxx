@@ -5,6 +5,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
@@ -108,7 +109,13 @@ public:
   {
     if (this->Message.empty() && data)
     {
+      // "ERROR: In file, line N\nvtkClass (0x...): text" -> "text"
       this->Message = static_cast<const char*>(data);
+      const auto object = this->Message.find("): ");
+      if (object != std::string::npos)
+      {
+        this->Message.erase(0, object + 3);
+      }
       while (!this->Message.empty() && std::isspace(static_cast<unsigned char>(this->Message.back())))
       {
         this->Message.pop_back();
@@ -211,6 +218,46 @@ void StorePackedColor(vtkDataArray* rgb, vtkIdType point, const unsigned char* b
   rgb->SetComponent(point, 2, packed & 0xff);
 }
 } // namespace
+
+bool LZFDecompress(const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out)
+{
+  out.clear();
+  out.reserve(size);
+  std::size_t i = 0;
+  while (i < in.size())
+  {
+    const unsigned ctrl = in[i++];
+    if (ctrl < 32) // a literal run of ctrl + 1 bytes
+    {
+      if (i + ctrl + 1 > in.size() || out.size() + ctrl + 1 > size)
+        return false;
+      out.insert(out.end(), in.begin() + static_cast<std::ptrdiff_t>(i),
+        in.begin() + static_cast<std::ptrdiff_t>(i + ctrl + 1));
+      i += ctrl + 1;
+      continue;
+    }
+    // A back reference: length (ctrl >> 5) + 2, extended by a byte when 7;
+    // distance ((ctrl & 31) << 8 | next byte) + 1 back from the end.
+    std::size_t length = ctrl >> 5;
+    if (length == 7)
+    {
+      if (i >= in.size())
+        return false;
+      length += in[i++];
+    }
+    length += 2;
+    if (i >= in.size())
+      return false;
+    const std::size_t distance = (static_cast<std::size_t>(ctrl & 31) << 8 | in[i++]) + 1;
+    if (distance > out.size() || out.size() + length > size)
+      return false;
+    for (std::size_t k = 0, from = out.size() - distance; k < length; ++k)
+    {
+      out.push_back(out[from + k]); // may overlap what it appends
+    }
+  }
+  return out.size() == size;
+}
 
 std::string Extension(const std::string& path)
 {
@@ -395,9 +442,9 @@ vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error
     error = path + ": not a PCD file (no DATA line)";
     return nullptr;
   }
-  if (data != "ascii" && data != "binary")
+  if (data != "ascii" && data != "binary" && data != "binary_compressed")
   {
-    error = path + ": PCD DATA " + data + " is not supported (only ascii and binary)";
+    error = path + ": PCD DATA " + data + " is not supported (ascii, binary, binary_compressed)";
     return nullptr;
   }
   if (points < 0)
@@ -464,12 +511,50 @@ vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error
     }
   }
   std::vector<unsigned char> record(stride);
+  // binary_compressed: LZF-compressed, one field after the other (all x,
+  // then all y, ...); unpacked here into records as in DATA binary.
+  std::vector<unsigned char> records;
+  if (data == "binary_compressed")
+  {
+    std::uint32_t sizes2[2] = { 0, 0 }; // compressed, uncompressed
+    std::vector<unsigned char> packed;
+    if (in.read(reinterpret_cast<char*>(sizes2), 8))
+    {
+      packed.resize(sizes2[0]);
+      in.read(reinterpret_cast<char*>(packed.data()), static_cast<std::streamsize>(packed.size()));
+    }
+    std::vector<unsigned char> fieldMajor;
+    if (!in || sizes2[1] != static_cast<std::uint64_t>(n) * stride ||
+      !LZFDecompress(packed, sizes2[1], fieldMajor))
+    {
+      error = path + ": bad binary_compressed PCD data (truncated, or not " + std::to_string(n) +
+        " points of " + std::to_string(stride) + " bytes)";
+      return nullptr;
+    }
+    records.resize(fieldMajor.size());
+    std::size_t fieldStart = 0, recordOffset = 0;
+    for (const auto& field : fields)
+    {
+      const std::size_t bytes = static_cast<std::size_t>(field.Size * field.Count);
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        std::memcpy(records.data() + i * stride + recordOffset, fieldMajor.data() + fieldStart + i * bytes, bytes);
+      }
+      fieldStart += bytes * static_cast<std::size_t>(n);
+      recordOffset += bytes;
+    }
+    data = "binary";
+  }
   std::string text;
   double xyz[3];
   for (vtkIdType i = 0; i < n; ++i)
   {
     std::vector<std::string> words;
-    if (data == "binary")
+    if (!records.empty())
+    {
+      std::memcpy(record.data(), records.data() + i * stride, stride);
+    }
+    else if (data == "binary")
     {
       if (!in.read(reinterpret_cast<char*>(record.data()), static_cast<std::streamsize>(stride)))
       {
@@ -582,7 +667,12 @@ vtkSmartPointer<vtkPolyData> ReadPointCloud(const std::string& path, std::string
       xml->SetFileName(path.c_str());
       reader = xml;
     }
+    // The reader's messages become `error`; the executive's "returned
+    // failure" dumps and the reader's warnings are not printed.
+    vtkNew<ErrorCatcher> quiet;
     reader->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->AddObserver(vtkCommand::WarningEvent, quiet);
+    reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
     reader->Update();
     cloud = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
     if (!errors->Message.empty())
@@ -622,7 +712,7 @@ vtkSmartPointer<vtkPolyData> ReadPointCloud(const std::string& path, std::string
 bool WritePointCloud(vtkPolyData* cloud, const std::string& path, std::string& error)
 {
   const std::string ext = Extension(path);
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<ErrorCatcher> errors, quiet;
   int ok = 0;
   if (ext == "ply")
   {
@@ -631,6 +721,7 @@ bool WritePointCloud(vtkPolyData* cloud, const std::string& path, std::string& e
     writer->SetFileTypeToBinary();
     writer->SetInputData(cloud);
     writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
     ok = writer->Write();
   }
   else if (ext == "vtp")
@@ -640,6 +731,7 @@ bool WritePointCloud(vtkPolyData* cloud, const std::string& path, std::string& e
     writer->SetDataModeToBinary();
     writer->SetInputData(cloud);
     writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
     ok = writer->Write();
   }
   else

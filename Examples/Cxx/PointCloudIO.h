@@ -10,8 +10,8 @@
  *   as many fields as the data, names the columns); the columns named x, y, z
  *   (any case) or else the first three are the coordinates, every other
  *   column becomes a double point-data array,
- * - PCD (Point Cloud Library), DATA ascii and binary (little endian; not
- *   binary_compressed): fields x y z plus others as point-data arrays of
+ * - PCD (Point Cloud Library), DATA ascii, binary and binary_compressed
+ *   (LZF; little endian): fields x y z plus others as point-data arrays of
  *   their own type; a packed rgb/rgba float field becomes an unsigned char
  *   RGB array.
  *
@@ -24,7 +24,9 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace pcio
 {
@@ -34,7 +36,11 @@ std::string Extension(const std::string& path);
 /// Reads XYZ/CSV text (see the file comment).
 vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& error);
 
-/// Reads a PCD file, DATA ascii or binary.
+/// Decompresses LZF data (the format of PCD's binary_compressed) that must
+/// expand to exactly `size` bytes; false on corrupt input.
+bool LZFDecompress(const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out);
+
+/// Reads a PCD file, DATA ascii, binary or binary_compressed.
 vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error);
 
 /// Reads any supported format, chosen by extension; the result has one

@@ -7,6 +7,7 @@
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -151,14 +152,62 @@ void TestPCD()
   // Truncated binary data, unsupported compression, no coordinates, not a PCD.
   cloud = pcio::ReadPCD(Write("truncated.pcd", bytes.substr(0, bytes.size() - 5)), error);
   CHECK(!cloud && error.find("ends after 2 of 3 points") != std::string::npos);
-  cloud = pcio::ReadPCD(Write("c.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 1, "binary_compressed")), error);
-  CHECK(!cloud && error.find("binary_compressed is not supported") != std::string::npos);
+  cloud = pcio::ReadPCD(Write("c.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 1, "lzma")), error);
+  CHECK(!cloud && error.find("PCD DATA lzma is not supported") != std::string::npos);
   cloud = pcio::ReadPCD(Write("noxyz.pcd", PCDHeader("a b c", "4 4 4", "F F F", "1 1 1", 1, "ascii") + "1 2 3\n"), error);
   CHECK(!cloud && error.find("no x y z") != std::string::npos);
   cloud = pcio::ReadPCD(Write("text.pcd", "hello world\n"), error);
   CHECK(!cloud && error.find("not a PCD file") != std::string::npos);
   cloud = pcio::ReadPCD(Write("short.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 2, "ascii") + "1 2 3\n"), error);
   CHECK(!cloud && error.find("ends after 1 of 2") != std::string::npos);
+}
+
+/// LZF with literal runs only (valid LZF, no compression), for the tests.
+std::string LZFLiterals(const std::string& raw)
+{
+  std::string out;
+  for (std::size_t i = 0; i < raw.size(); i += 32)
+  {
+    const std::size_t run = std::min<std::size_t>(32, raw.size() - i);
+    out += static_cast<char>(run - 1);
+    out += raw.substr(i, run);
+  }
+  return out;
+}
+
+void TestCompressedPCD()
+{
+  // A literal run "abc", then a back reference of 6 bytes at distance 3.
+  const std::vector<unsigned char> lzf = { 2, 'a', 'b', 'c', (4 << 5) | 0, 2 };
+  std::vector<unsigned char> out;
+  CHECK(pcio::LZFDecompress(lzf, 9, out) && std::string(out.begin(), out.end()) == "abcabcabc");
+  CHECK(!pcio::LZFDecompress(lzf, 8, out));                                      // wrong size
+  CHECK(!pcio::LZFDecompress({ 2, 'a', 'b', 'c', (4 << 5) | 0, 5 }, 9, out)); // reference before the start
+  CHECK(!pcio::LZFDecompress({ 5, 'a' }, 6, out));                              // truncated literal
+
+  // 3 points, fields x y z (F4) and intensity (U2), stored field after field.
+  std::string fieldMajor;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int i = 0; i < 3; ++i)
+      Append<float>(fieldMajor, static_cast<float>(10 * i + axis));
+  for (int i = 0; i < 3; ++i)
+    Append<std::uint16_t>(fieldMajor, static_cast<std::uint16_t>(500 + i));
+  const std::string packed = LZFLiterals(fieldMajor);
+  std::string file = PCDHeader("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 3, "binary_compressed");
+  Append<std::uint32_t>(file, static_cast<std::uint32_t>(packed.size()));
+  Append<std::uint32_t>(file, static_cast<std::uint32_t>(fieldMajor.size()));
+  file += packed;
+  std::string error;
+  auto cloud = pcio::ReadPointCloud(Write("compressed.pcd", file), error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 3);
+  if (cloud)
+  {
+    CHECK(PointIs(cloud, 0, 0, 1, 2) && PointIs(cloud, 2, 20, 21, 22));
+    vtkDataArray* intensity = cloud->GetPointData()->GetArray("intensity");
+    CHECK(intensity && intensity->GetTuple1(1) == 501);
+  }
+  cloud = pcio::ReadPCD(Write("compressed-cut.pcd", file.substr(0, file.size() - 4)), error);
+  CHECK(!cloud && error.find("bad binary_compressed") != std::string::npos);
 }
 
 void TestDispatchAndRoundTrip()
@@ -194,6 +243,7 @@ int main(int argc, char* argv[])
   }
   TestText();
   TestPCD();
+  TestCompressedPCD();
   TestDispatchAndRoundTrip();
   if (Failures)
   {
