@@ -17,9 +17,7 @@ The CTest test python.ExamplePaperFigures renders it with Mesa's software
 OpenGL and compares it with Testing/Data/Baseline/paper_figures.png.
 """
 import argparse
-import glob
 import os
-import sys
 
 import numpy as np
 from paraview import servermanager
@@ -27,21 +25,11 @@ from paraview.simple import (AssignViewToLayout, Calculator, CreateLayout, Creat
                              LoadPlugin, PLYReader, Render, SaveScreenshot, Show, Text, Threshold)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+from asm_plugin import REPO, find_plugin
+
 GREY = [0.55, 0.55, 0.55]
 RED = [0.85, 0.1, 0.1]
 BACKGROUND = [1.0, 1.0, 1.0]
-
-
-def find_plugin(explicit):
-    if explicit:
-        return explicit
-    if os.environ.get("ASM_PLUGIN"):
-        return os.environ["ASM_PLUGIN"]
-    found = sorted(glob.glob(os.path.join(REPO, "build", "lib", "paraview-*", "plugins", "ASM", "ASM.so")))
-    if not found:
-        sys.exit("ASM plugin not found: build first (bash scripts/build.sh) or pass --plugin")
-    return found[-1]
 
 
 def new_view(size):
