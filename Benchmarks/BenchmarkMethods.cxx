@@ -166,8 +166,8 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
 {
   // vtkVoxelGrid's bins always span the bounds exactly, so its count depends
   // only on the integer divisions: search a cubic leaf size s (divisions
-  // round(range / s)), then, when that cannot come within 1 %, move one
-  // division at a time (greedy, the 26 neighbouring triples).
+  // round(range / s)), then, when that cannot come within 1 %, move up
+  // to two divisions per axis at a time (greedy, the 124 neighbouring triples).
   auto voxel = vtkSmartPointer<vtkVoxelGrid>::New();
   voxel->SetInputData(input);
   voxel->SetConfigurationStyleToManual();
@@ -200,11 +200,11 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
   for (int step = 0; step < 30 && error(count(best)) > slack; ++step)
   {
     std::array<int, 3> next = best;
-    for (int dx = -1; dx <= 1; ++dx)
+    for (int dx = -2; dx <= 2; ++dx)
     {
-      for (int dy = -1; dy <= 1; ++dy)
+      for (int dy = -2; dy <= 2; ++dy)
       {
-        for (int dz = -1; dz <= 1; ++dz)
+        for (int dz = -2; dz <= 2; ++dz)
         {
           const std::array<int, 3> d = { std::max(1, best[0] + dx), std::max(1, best[1] + dy),
             std::max(1, best[2] + dz) };

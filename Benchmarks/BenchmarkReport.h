@@ -42,8 +42,9 @@ double Median(std::vector<double> values);
 std::vector<std::string> SplitList(const std::string& text);
 
 /// Peak resident memory (bytes) added while `run` executes, measured in a
-/// forked child (the parent's memory is untouched): the child resets its
-/// high-water mark (/proc/self/clear_refs "5"), runs, and reports
+/// forked child (the parent's memory is untouched): the child makes malloc
+/// return large blocks to the system at once, runs once to warm up, resets
+/// its high-water mark (/proc/self/clear_refs "5"), runs again and reports
 /// VmHWM - VmRSS(before) - run()'s own return value (bytes to exclude, e.g.
 /// the output's). Negative when not measurable (not Linux, fork failed).
 double PeakExtraBytes(const std::function<double()>& run);

@@ -208,7 +208,10 @@ int main(int argc, char* argv[])
       Table table(header);
       for (const Row& row : rows)
       {
-        std::vector<std::string> cells = { row.Method, std::to_string(row.Count), Format(row.Seconds, 3) };
+        // "*": the method could not be driven within 1 % of N_s.
+        const bool off = std::abs(static_cast<double>(row.Count - target)) > std::max(0.5, 0.01 * target);
+        std::vector<std::string> cells = { row.Method, std::to_string(row.Count) + (off ? "*" : ""),
+          Format(row.Seconds, 3) };
         for (const Measure& measure : Measures())
         {
           if (tips || !measure.Tips)

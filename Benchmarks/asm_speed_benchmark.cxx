@@ -182,6 +182,7 @@ int main(int argc, char* argv[])
         {
           std::vector<double> seconds;
           Timing timing;
+          m.Run(false); // warm-up, not timed
           for (int r = 0; r < runs; ++r)
           {
             const RunResult result = m.Run(false);
