@@ -188,6 +188,9 @@ bool vtkASMSimplify::CheckParameters()
 int vtkASMSimplify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort (ParaView's Cancel) stops one run; VTK 9.2's executive never
+  // clears the flag, so without this every later run would abort at once.
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
