@@ -11,6 +11,8 @@
 
 #include <array>
 #include <chrono>
+#include <cstdlib>
+#include <iostream>
 #include <map>
 #include <cmath>
 #include <limits>
@@ -179,15 +181,34 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
       return known->second;
     }
     voxel->SetDivisions(d[0], d[1], d[2]);
-    return counts[d] = RunFilter(voxel, false).Count;
+    counts[d] = RunFilter(voxel, false).Count;
+    if (std::getenv("ASM_BENCHMARK_DEBUG"))
+    {
+      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << ": " << counts[d] << "\n";
+    }
+    return counts[d];
   };
   double bounds[6];
   input->GetBounds(bounds);
+  // vtkVoxelGrid allocates memory for every bin, empty or not (a bin map and
+  // the locator's offsets, 16 bytes per bin): past MaxBins it cannot reach
+  // N_s on this machine, and gives the closest count below MaxBins.
+  constexpr double MaxBins = 268435456.0; // 2^28: about 4 GB
   auto divisions = [&bounds](double s) {
     std::array<int, 3> d;
-    for (int k = 0; k < 3; ++k)
+    for (int pass = 0; pass < 2; ++pass)
     {
-      d[k] = static_cast<int>(std::max(1.0, std::min(1e6, std::round((bounds[2 * k + 1] - bounds[2 * k]) / s))));
+      double bins = 1.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        d[k] = static_cast<int>(std::max(1.0, std::min(1e6, std::round((bounds[2 * k + 1] - bounds[2 * k]) / s))));
+        bins *= d[k];
+      }
+      if (bins <= MaxBins)
+      {
+        break;
+      }
+      s *= std::cbrt(bins / MaxBins) * 1.001;
     }
     return d;
   };
@@ -208,7 +229,7 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
         {
           const std::array<int, 3> d = { std::max(1, best[0] + dx), std::max(1, best[1] + dy),
             std::max(1, best[2] + dz) };
-          if (error(count(d)) < error(count(next)))
+          if (double(d[0]) * d[1] * d[2] <= MaxBins && error(count(d)) < error(count(next)))
           {
             next = d;
           }
