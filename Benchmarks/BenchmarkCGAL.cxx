@@ -75,7 +75,7 @@ Method MakeCgalGrid(vtkPolyData* input, vtkIdType target)
   const double diagonal = input->GetLength(); // bounding-box diagonal
   vtkIdType found = 0;
   const double epsilon = SearchScale([&run](double e) { return run(e, false).Count; }, target,
-    diagonal / std::sqrt(static_cast<double>(target)), 2.0, 0.01, 40, found);
+    diagonal / std::sqrt(static_cast<double>(target)), 2.0, 0.01, 40, found, 40);
   Method m;
   m.Name = "CGAL grid";
   m.Note = "epsilon " + std::to_string(epsilon);

@@ -63,6 +63,14 @@ double Dot(const Vec& a, const Vec& b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/// The SplitMix64 finaliser: a bijective 64-bit hash.
+std::uint64_t Mix(std::uint64_t z)
+{
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
 /// Fills n points: sample(rng, p) writes point p; chunks of 65536 points,
 /// each with its own seed, generated in parallel (deterministic).
 vtkSmartPointer<vtkPolyData> Generate(std::int64_t n, std::uint64_t seed,
@@ -77,7 +85,9 @@ vtkSmartPointer<vtkPolyData> Generate(std::int64_t n, std::uint64_t seed,
   vtkSMPTools::For(0, chunks, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
     {
-      Random rng(seed * 0x2545F4914F6CDD1DULL + static_cast<std::uint64_t>(c) * 0x9E3779B97F4A7C15ULL + 7);
+      // Each chunk's stream starts at a hashed state: consecutive seeds of
+      // SplitMix64 would give streams shifted by one draw (the same points).
+      Random rng(Mix(Mix(seed) ^ Mix(static_cast<std::uint64_t>(c) + 0x632BE59BD9B4E019ULL)));
       for (std::int64_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
       {
         sample(rng, out + 3 * i);

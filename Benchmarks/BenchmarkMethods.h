@@ -80,9 +80,12 @@ Method MakeCgalHierarchy(vtkPolyData* input, vtkIdType target);
 
 /// Searches a scale s > 0 such that count(s) (decreasing in s, about as
 /// s^-exponent) is within `tolerance` (relative) of target; returns the best
-/// s found in at most maxEvaluations calls (and its count in `found`).
+/// s found in at most maxEvaluations calls (and its count in `found`), then,
+/// if still outside the tolerance, up to `probes` more calls at s * (1 +/-
+/// 0.25 % k) around the best (grid counts jump, and are not monotone).
 double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target,
-  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found);
+  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found,
+  int probes = 0);
 
 /// Wall-clock seconds since an arbitrary origin.
 double Now();

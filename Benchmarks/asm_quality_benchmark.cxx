@@ -159,6 +159,14 @@ int main(int argc, char* argv[])
                " tip: known feature point -> nearest sample\n";
 
   std::map<std::string, Tally> tallies;
+  // One line per ASM configuration, input and fraction: its ratios to the best peer.
+  std::vector<std::string> ratioHeader = { "ASM mode", "input", "N_s" };
+  for (const Measure& measure : Measures())
+  {
+    ratioHeader.push_back(measure.Name);
+  }
+  ratioHeader.push_back("hole / vtkVoxelGrid");
+  Table ratios(ratioHeader);
   std::set<std::string> seen;
   for (const std::string& spec : inputs)
   {
@@ -235,10 +243,12 @@ int main(int argc, char* argv[])
         }
         Tally& tally = tallies[row.Method];
         std::vector<std::string> cells = { row.Method + " / best peer", "", "" };
+        std::vector<std::string> compact = { row.Method, input.Name, Format(100.0 * fraction, 3) + " %" };
         for (const Measure& measure : Measures())
         {
           if (!tips && measure.Tips)
           {
+            compact.push_back("");
             continue;
           }
           double best = INFINITY;
@@ -252,6 +262,7 @@ int main(int argc, char* argv[])
           const double value = measure.Get(row.Q);
           const double ratio = best > 0.0 ? value / best : (value > 0.0 ? INFINITY : 1.0);
           cells.push_back(Fixed(ratio, 2));
+          compact.push_back(Fixed(ratio, 2));
           tally.Ratios[measure.Name].push_back(ratio);
           tally.Wins[measure.Name] += ratio <= 1.0 ? 1 : 0;
           tally.Cases[measure.Name] += 1;
@@ -261,6 +272,8 @@ int main(int argc, char* argv[])
           tally.HoleNotWorseThanVoxel += row.Q.Hole <= voxel->Q.Hole ? 1 : 0;
           tally.HoleCases += 1;
         }
+        compact.push_back(voxel && voxel->Q.Hole > 0.0 ? Fixed(row.Q.Hole / voxel->Q.Hole, 2) : "-");
+        ratios.Add(compact);
         table.Add(cells);
       }
       std::cout << "\n## " << input.Name << ": N = " << n << ", N_s = " << target << " ("
@@ -268,6 +281,9 @@ int main(int argc, char* argv[])
       table.Print(std::cout, markdown);
     }
   }
+
+  std::cout << "\n## Ratios: ASM / best peer per input (< 1: ASM better than every peer)\n\n";
+  ratios.Print(std::cout, markdown);
 
   // Summary: per ASM configuration and measure, the cases where it is not
   // worse than the best peer, and the median ratio.

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -43,6 +44,14 @@ void Usage()
                "                           [--fractions 0.05,0.01,0.2] [--inputs spec,...]\n"
                "                           [--no-memory] [--markdown] [input ...]\n"
                "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n";
+}
+
+/// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
+std::string LoadAverage()
+{
+  std::ifstream in("/proc/loadavg");
+  std::string first;
+  return in >> first ? first : std::string("?");
 }
 
 void SetThreads(int threads)
@@ -138,9 +147,9 @@ int main(int argc, char* argv[])
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
   std::cout << "# asm_speed_benchmark, " << date << ", median of " << runs
-            << " run(s), vtkSMPTools STDThread backend\n"
+            << " run(s), vtkSMPTools STDThread backend, load average " << LoadAverage() << "\n"
             << "# Mpt/s: million input points per second; x peer: peer time / ASM time (> 1: ASM"
-               " faster); mem: peak memory beyond input and output, bytes per input point\n";
+               " faster); mem: peak memory beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
 
   Table table({ "input", "N", "N_s", "method", "threads", "median s", "Mpt/s", "x vtkVoxelGrid",
     "x vtkMaskPoints", "mem B/pt" });
@@ -201,10 +210,13 @@ int main(int argc, char* argv[])
         {
           const Timing& timing = timings[m.Name];
           auto ratio = [&](const char* peer) {
-            return m.IsASM ? "x" + Fixed(timings[peer].Median / timing.Median, 2) : std::string();
+            return m.IsASM ? "x" + Format(timings[peer].Median / timing.Median, 3) : std::string();
           };
           const auto mem = memoryPerPoint.find(m.Name);
-          table.Add({ input.Name, std::to_string(n), std::to_string(timing.Count), m.Name,
+          // "*": the method could not be driven within 1 % of N_s.
+          const bool off = std::abs(static_cast<double>(timing.Count - target)) >
+            std::max(0.5, 0.01 * static_cast<double>(target));
+          table.Add({ input.Name, std::to_string(n), std::to_string(timing.Count) + (off ? "*" : ""), m.Name,
             std::to_string(t), Format(timing.Median, 3),
             Fixed(static_cast<double>(n) / timing.Median / 1e6, 1), ratio("vtkVoxelGrid"),
             ratio("vtkMaskPoints random"),
@@ -262,5 +274,6 @@ int main(int argc, char* argv[])
     summary.Add(cells);
   }
   summary.Print(std::cout, markdown);
+  std::cout << "\n# load average at the end: " << LoadAverage() << "\n";
   return 0;
 }

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace
@@ -112,7 +114,16 @@ TEST(BenchmarkData, SyntheticShapesAreSeededAndOnTheirSurface)
       }
     }
   }
-  EXPECT_EQ(asmbench::MakeInput("bumps:20k").NumberOfPoints(), 20000);
+  // Several generation chunks (65536 points each): no repeated points.
+  std::vector<double> bumps = asmbench::Coordinates(asmbench::MakeInput("bumps:200k").Data);
+  ASSERT_EQ(bumps.size(), 3u * 200000u);
+  std::vector<std::array<double, 3>> sorted(200000);
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+  {
+    sorted[i] = { bumps[3 * i], bumps[3 * i + 1], bumps[3 * i + 2] };
+  }
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::unique(sorted.begin(), sorted.end()) - sorted.begin(), 200000);
   EXPECT_EQ(asmbench::ParseCount("14M"), 14000000);
   EXPECT_EQ(asmbench::ParseCount("100k"), 100000);
   EXPECT_EQ(asmbench::ParseCount("x"), -1);
