@@ -266,12 +266,14 @@ int vtkASMSimplify::RequestData(
                                         : asmcore::SimplifyMode::FeaturePreserving;
   parameters.ValidateKeyPoints = this->ValidateKeyPoints;
   parameters.KeyPointRadius = this->KeyPointRadius;
+  parameters.KeyPointProminence = this->KeyPointProminence;
   parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
   parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
   parameters.CoverEveryCell = this->CoverEveryCell;
   parameters.BudgetExponent = this->BudgetExponent;
   parameters.LloydIterations = this->LloydIterations;
   parameters.CrossCellIterations = this->CrossCellIterations;
+  parameters.InputPointSamples = this->InputPointSamples;
   parameters.FillHoles = this->FillHoles;
   parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = input->GetPoints()->GetDataType() == VTK_DOUBLE
@@ -377,12 +379,14 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mode: " << (this->Mode == PAPER ? "Paper" : "FeaturePreserving") << "\n";
   os << indent << "ValidateKeyPoints: " << this->ValidateKeyPoints << "\n";
   os << indent << "KeyPointRadius: " << this->KeyPointRadius << "\n";
+  os << indent << "KeyPointProminence: " << this->KeyPointProminence << "\n";
   os << indent << "InPlaneKeyPoints: " << this->InPlaneKeyPoints << "\n";
   os << indent << "ExtremeKeyPoints: " << this->ExtremeKeyPoints << "\n";
   os << indent << "CoverEveryCell: " << this->CoverEveryCell << "\n";
   os << indent << "BudgetExponent: " << this->BudgetExponent << "\n";
   os << indent << "LloydIterations: " << this->LloydIterations << "\n";
   os << indent << "CrossCellIterations: " << this->CrossCellIterations << "\n";
+  os << indent << "InputPointSamples: " << this->InputPointSamples << "\n";
   os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
   os << indent << "TargetMode: "

@@ -119,8 +119,20 @@ public:
 
   ///@{
   /**
+   * FEATURE_PRESERVING: least prominence of a validated key point (its height
+   * along its direction above the mean of the points within KeyPointRadius),
+   * as a fraction of that radius, in [0, 1]; default 0.05. Drops scanner
+   * noise and the tangent points of smooth curved patches.
+   */
+  vtkSetClampMacro(KeyPointProminence, double, 0.0, 1.0);
+  vtkGetMacro(KeyPointProminence, double);
+  ///@}
+
+  ///@{
+  /**
    * FEATURE_PRESERVING: the extremes of a cell along +-v0 and +-v1 are key
-   * point candidates too (spike tips, corners, scan borders); default on.
+   * point candidates too (spike tips, scan borders), and so are the extremes
+   * along the eight diagonals +-v0 +-v1 +-v2 (corners); default on.
    */
   vtkSetMacro(InPlaneKeyPoints, bool);
   vtkGetMacro(InPlaneKeyPoints, bool);
@@ -176,6 +188,18 @@ public:
    */
   vtkSetClampMacro(CrossCellIterations, int, 0, 4);
   vtkGetMacro(CrossCellIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: each sample is the input point nearest its cluster's
+   * centre (a measured point on the surface, not a centroid inside its
+   * curvature); the input arrays are still averaged over the cluster unless
+   * SnapToInputPoints is on; default on.
+   */
+  vtkSetMacro(InputPointSamples, bool);
+  vtkGetMacro(InputPointSamples, bool);
+  vtkBooleanMacro(InputPointSamples, bool);
   ///@}
 
   ///@{
@@ -355,12 +379,14 @@ protected:
   int Mode = FEATURE_PRESERVING;
   bool ValidateKeyPoints = true;
   double KeyPointRadius = 0.5;
+  double KeyPointProminence = 0.05;
   bool InPlaneKeyPoints = true;
   bool ExtremeKeyPoints = true;
   bool CoverEveryCell = true;
   double BudgetExponent = 0.5;
   int LloydIterations = 4;
   int CrossCellIterations = 2;
+  bool InputPointSamples = true;
   bool FillHoles = false;
   double HoleFillFraction = 0.02;
   int TargetMode = OUTPUT_FRACTION;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace asmcore
 {
@@ -116,7 +117,23 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   {
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  const CellGrid original = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  // Every later pass reads the points cell by cell: a copy in cell order
+  // (slot i holds point original.Order[i]) keeps those reads sequential.
+  std::vector<double> cellOrdered(static_cast<std::size_t>(3 * total));
+  execution.Run(0, total, [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      std::copy(xyz + 3 * original.Order[i], xyz + 3 * original.Order[i] + 3, &cellOrdered[3 * i]);
+    }
+  });
+  const double* P = cellOrdered.data();
+  CellGrid grid;
+  grid.Spec = original.Spec;
+  grid.CellStart = original.CellStart;
+  grid.CellKey = original.CellKey;
+  grid.Order.resize(static_cast<std::size_t>(total));
+  std::iota(grid.Order.begin(), grid.Order.end(), Index(0));
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
@@ -132,7 +149,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   execution.Run(0, cells, [&](Index b, Index e) {
     for (Index c = b; c < e; ++c)
     {
-      frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+      frames[c] = ComputeCellFrame(P, grid.CellPoints(c), grid.CellSizeOf(c));
     }
   });
   FeatureKeyOptions keyOptions;
@@ -151,7 +168,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     LocalPoints q;
     for (Index c = b; c < e; ++c)
     {
-      keys[c] = FindFeatureKeys(xyz, grid, neighbors, frames[c], c, keyOptions, q);
+      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q);
     }
   });
   if (abort(0.4))
@@ -214,11 +231,10 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         info[first + k].KeyError = key.Error;
         exclude.push_back(key.Point);
       }
-      RelaxCell(xyz, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
+      RelaxCell(P, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
         budget[c], parameters.LloydIterations, samples, scratch);
     }
   });
-  samples.UpdateBoxes(execution);
   if (abort(0.6))
   {
     return result;
@@ -229,8 +245,8 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   std::vector<double> distance2;
   for (int it = 0; it < CrossIterations(parameters); ++it)
   {
-    AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
-    MoveToCentroids(xyz, grid, neighbors, assign, samples, execution);
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
     if (abort(0.6 + 0.2 * (it + 1) / CrossIterations(parameters)))
     {
       return result;
@@ -238,11 +254,11 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
   for (int round = 0; parameters.FillHoles && round < parameters.HoleFillRounds; ++round)
   {
-    AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
     std::vector<Index> order;
     const auto maxMoves = static_cast<Index>(
       std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
-    if (FillHoles(xyz, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
+    if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
     {
       break;
     }
@@ -254,15 +270,13 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
     }
     info.swap(moved);
-    if (CrossIterations(parameters) > 0)
-    {
-      AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
-      MoveToCentroids(xyz, grid, neighbors, assign, samples, execution);
-    }
+    // One Lloyd step re-centres the moved samples and their neighbours.
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
   // Clusters: every point joins its nearest sample.
-  AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
+  AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
   std::vector<Index> clusterSize(static_cast<std::size_t>(count), 0);
   for (Index s : assign)
   {
@@ -271,7 +285,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       ++clusterSize[s];
     }
   }
-  FillEmptyClusters(xyz, grid, neighbors, samples, info, assign, distance2, clusterSize);
+  FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
   std::vector<Index> memberStart(static_cast<std::size_t>(count) + 1, 0);
   for (Index s = 0; s < count; ++s)
   {
@@ -284,7 +298,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     {
       if (assign[i] >= 0)
       {
-        result.Members[fill[assign[i]]++] = grid.Order[i];
+        result.Members[fill[assign[i]]++] = original.Order[i];
       }
     }
   }
@@ -310,12 +324,17 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       out.MemberBegin = memberStart[s];
       out.ClusterSize = clusterSize[s];
       const Index* first = result.Members.data() + memberStart[s];
-      Index nearest = info[s].KeyPoint;
+      Index nearest = info[s].KeyPoint >= 0 ? original.Order[info[s].KeyPoint] : -1;
       double bestD = std::numeric_limits<double>::infinity();
       Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
+      double mean[3] = { 0.0, 0.0, 0.0 };
       for (Index m = 0; m < clusterSize[s]; ++m)
       {
         const double* x = xyz + 3 * first[m];
+        for (int a = 0; a < 3; ++a)
+        {
+          mean[a] += x[a];
+        }
         const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
           (x[2] - p[2]) * (x[2] - p[2]);
         if (d < bestD || (d == bestD && first[m] < nearest))
@@ -334,14 +353,17 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       }
       if (nearest < 0)
       {
-        nearest = grid.CellPoints(info[s].Owner)[0]; // no member could be found
+        nearest = original.CellPoints(info[s].Owner)[0]; // no member could be found
       }
       out.Representative = nearest;
       const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
         !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
+      // A free sample that is not snapped is its final cluster's centroid.
+      const bool centroid = !snap && !samples.Fixed[s] && clusterSize[s] > 0;
       for (int a = 0; a < 3; ++a)
       {
-        out.Position[a] = snap ? xyz[3 * nearest + a] : p[a];
+        out.Position[a] = snap ? xyz[3 * nearest + a]
+                               : (centroid ? mean[a] / static_cast<double>(clusterSize[s]) : p[a]);
       }
       Eigen::Vector3d normal = frame.Normal();
       const Eigen::Vector3d reference =

@@ -78,6 +78,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   std::vector<Index> candidates(static_cast<std::size_t>(count));
   std::iota(candidates.begin(), candidates.end(), Index(0));
   const Index keep = std::min<Index>(count, 8 * maxMoves);
+  (void)execution;
   auto smaller = [&](Index a, Index b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); };
   std::partial_sort(candidates.begin(), candidates.begin() + keep, candidates.end(), smaller);
   candidates.resize(static_cast<std::size_t>(keep));
@@ -85,68 +86,82 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     candidates.pop_back();
   }
-  // Cost of removing each candidate, and who takes over its members.
-  const Index nc = static_cast<Index>(candidates.size());
-  std::vector<double> cost(static_cast<std::size_t>(nc), 0.0);
-  std::vector<std::vector<Index>> heirs(static_cast<std::size_t>(nc));
-  execution.Run(0, nc, [&](Index b, Index e) {
-    for (Index k = b; k < e; ++k)
+  // Cost of removing candidate s, and who takes over its members.
+  std::vector<Index> heirs;
+  auto removalCost = [&](Index s) {
+    double cost = 0.0;
+    heirs.clear();
+    for (Index m = start[s]; m < start[s + 1]; ++m)
     {
-      const Index s = candidates[k];
-      for (Index m = start[s]; m < start[s + 1]; ++m)
+      const Index slot = members[m];
+      const double* p = xyz + 3 * grid.Order[slot];
+      const Index* ring = neighbors.Of(CellOfSlot(grid, slot));
+      double best = Infinity;
+      Index heir = -1;
+      for (int r = 0; r < 27; ++r)
       {
-        const Index slot = members[m];
-        const double* p = xyz + 3 * grid.Order[slot];
-        const Index* ring = neighbors.Of(CellOfSlot(grid, slot));
-        double best = Infinity;
-        Index heir = -1;
-        for (int r = 0; r < 27; ++r)
+        const Index nb = ring[r];
+        for (Index t = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && t < samples.Start[nb + 1]; ++t)
         {
-          const Index nb = ring[r];
-          for (Index t = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && t < samples.Start[nb + 1]; ++t)
+          const double d = Distance2(p, samples.Position.data() + 3 * t);
+          if (t != s && d < best)
           {
-            const double d = Distance2(p, samples.Position.data() + 3 * t);
-            if (t != s && d < best)
-            {
-              best = d;
-              heir = t;
-            }
+            best = d;
+            heir = t;
           }
         }
-        cost[k] = std::max(cost[k], best);
-        if (heir >= 0 && std::find(heirs[k].begin(), heirs[k].end(), heir) == heirs[k].end())
-        {
-          heirs[k].push_back(heir);
-        }
+      }
+      cost = std::max(cost, best);
+      if (heir >= 0 && std::find(heirs.begin(), heirs.end(), heir) == heirs.end())
+      {
+        heirs.push_back(heir);
       }
     }
-  });
-  std::vector<Index> byCost(static_cast<std::size_t>(nc));
-  std::iota(byCost.begin(), byCost.end(), Index(0));
-  std::sort(byCost.begin(), byCost.end(),
-    [&](Index a, Index b) { return cost[a] < cost[b] || (cost[a] == cost[b] && a < b); });
-  // Gaps: the points farthest from every sample, one per gap.
-  std::vector<Index> far(static_cast<std::size_t>(points));
-  std::iota(far.begin(), far.end(), Index(0));
-  const Index look = std::min<Index>(points, 50 * maxMoves);
-  std::partial_sort(far.begin(), far.begin() + look, far.end(), [&](Index a, Index b) {
+    return cost;
+  };
+  // Gaps: the points farthest from every sample, one per gap (a point
+  // within its own gap distance of a gap taken already, in its cell's ring,
+  // belongs to that gap).
+  std::vector<Index> far;
+  far.reserve(static_cast<std::size_t>(points));
+  for (Index i = 0; i < points; ++i)
+  {
+    if (std::isfinite(distance2[i]))
+    {
+      far.push_back(i);
+    }
+  }
+  auto fartherFirst = [&](Index a, Index b) {
     return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
-  });
+  };
+  const auto look = static_cast<std::ptrdiff_t>(std::min<std::size_t>(far.size(), 20 * maxMoves));
+  std::nth_element(far.begin(), far.begin() + look, far.end(), fartherFirst);
   far.resize(static_cast<std::size_t>(look));
+  std::sort(far.begin(), far.end(), fartherFirst);
   std::vector<Index> gaps;
+  std::vector<Index> head(static_cast<std::size_t>(cells), -1); // gaps per cell, chained
+  std::vector<Index> chain;
   for (Index i : far)
   {
-    if (static_cast<Index>(gaps.size()) >= maxMoves || !std::isfinite(distance2[i]))
+    if (static_cast<Index>(gaps.size()) >= maxMoves)
     {
       break;
     }
+    const double* p = xyz + 3 * grid.Order[i];
+    const Index cell = CellOfSlot(grid, i);
+    const Index* ring = neighbors.Of(cell);
     bool separate = true;
-    for (Index g : gaps)
+    for (int k = 0; k < 27 && separate; ++k)
     {
-      separate = separate && Distance2(xyz + 3 * grid.Order[i], xyz + 3 * grid.Order[g]) > distance2[i];
+      for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
+      {
+        separate = Distance2(p, xyz + 3 * grid.Order[gaps[g]]) > distance2[i];
+      }
     }
     if (separate)
     {
+      chain.push_back(head[cell]);
+      head[cell] = static_cast<Index>(gaps.size());
       gaps.push_back(i);
     }
   }
@@ -157,28 +172,42 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     std::fill(owner.begin() + samples.Start[c], owner.begin() + samples.Start[c + 1], c);
   }
+  // The most crowded candidates are tried in turn for each gap, from the
+  // largest; a candidate that does not pay for this gap is passed over.
   Index moves = 0;
   std::size_t next = 0;
   for (Index g : gaps)
   {
-    while (next < byCost.size() && blocked[candidates[byCost[next]]])
+    bool moved = false;
+    for (int tries = 0; tries < 8 && !moved; ++tries)
     {
-      ++next;
+      while (next < candidates.size() && blocked[candidates[next]])
+      {
+        ++next;
+      }
+      if (next >= candidates.size())
+      {
+        break;
+      }
+      const Index s = candidates[next++];
+      if (!(removalCost(s) < 0.9 * distance2[g]))
+      {
+        continue;
+      }
+      blocked[s] = 1;
+      for (Index t : heirs)
+      {
+        blocked[t] = 1;
+      }
+      std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
+      owner[s] = CellOfSlot(grid, g);
+      ++moves;
+      moved = true;
     }
-    if (next >= byCost.size() || !(cost[byCost[next]] < 0.8 * distance2[g]))
+    if (!moved)
     {
       break;
     }
-    const Index k = byCost[next++];
-    const Index s = candidates[k];
-    blocked[s] = 1;
-    for (Index t : heirs[k])
-    {
-      blocked[t] = 1;
-    }
-    std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
-    owner[s] = CellOfSlot(grid, g);
-    ++moves;
   }
   if (moves == 0)
   {
@@ -202,7 +231,6 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   }
   samples.Position.swap(position);
   samples.Fixed.swap(fixed);
-  samples.UpdateBoxes(execution);
   return moves;
 }
 } // namespace asmcore

@@ -18,42 +18,7 @@ inline double Distance2(const double* a, const double* b)
   return dx * dx + dy * dy + dz * dz;
 }
 
-inline double Distance2ToBox(const double* box, const double* p)
-{
-  double d2 = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double g = p[a] < box[a] ? box[a] - p[a] : (p[a] > box[3 + a] ? p[a] - box[3 + a] : 0.0);
-    d2 += g * g;
-  }
-  return d2;
-}
 } // namespace
-
-void SampleSet::UpdateBoxes(const Execution& execution)
-{
-  const Index cells = static_cast<Index>(this->Start.size()) - 1;
-  this->Box.assign(static_cast<std::size_t>(6 * std::max<Index>(cells, 0)), 0.0);
-  execution.Run(0, cells, [&](Index b, Index e) {
-    for (Index c = b; c < e; ++c)
-    {
-      double* box = this->Box.data() + 6 * c;
-      for (int a = 0; a < 3; ++a)
-      {
-        box[a] = Infinity;
-        box[3 + a] = -Infinity;
-      }
-      for (Index s = this->Start[c]; s < this->Start[c + 1]; ++s)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          box[a] = std::min(box[a], this->Position[3 * s + a]);
-          box[3 + a] = std::max(box[3 + a], this->Position[3 * s + a]);
-        }
-      }
-    }
-  });
-}
 
 void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame& frame,
   const std::vector<Index>& exclude, Index firstSample, Index fixedCount, Index budget,
@@ -179,31 +144,89 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   distance2.resize(grid.Order.size());
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
+    std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
     for (Index c = b; c < e; ++c)
     {
-      const Index* ring = neighbors.Of(c);
+      const Index first = samples.Start[c], last = samples.Start[c + 1];
+      // Pass 1: the nearest of the cell's own samples, and the farthest any
+      // point of the cell is from it (the search radius for the others).
+      double reach = 0.0;
+      double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
         const double* p = xyz + 3 * grid.Order[i];
         Index best = -1;
         double bestD = Infinity;
-        for (int step = 0; step < 27; ++step)
+        for (Index s = first; s < last; ++s)
         {
-          const int k = step == 0 ? 13 : (step <= 13 ? step - 1 : step);
-          const Index nb = ring[k];
-          if (nb < 0 || samples.Start[nb] == samples.Start[nb + 1] ||
-            (k != 13 && Distance2ToBox(samples.Box.data() + 6 * nb, p) > bestD))
+          const double d = Distance2(p, pos + 3 * s);
+          if (d < bestD)
           {
-            continue;
+            bestD = d;
+            best = s;
           }
-          for (Index s = samples.Start[nb]; s < samples.Start[nb + 1]; ++s)
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+        reach = std::max(reach, bestD);
+        for (int a = 0; a < 3; ++a)
+        {
+          box[a] = std::min(box[a], p[a]);
+          box[3 + a] = std::max(box[3 + a], p[a]);
+        }
+      }
+      // The neighbours' samples that can be nearer for some point of c:
+      // within `reach` of the box of c's points.
+      candidates.clear();
+      const Index* ring = neighbors.Of(c);
+      const double r = std::sqrt(reach);
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        if (k == 13 || nb < 0)
+        {
+          continue;
+        }
+        for (Index s = samples.Start[nb]; s < samples.Start[nb + 1]; ++s)
+        {
+          const double* t = pos + 3 * s;
+          double g2 = 0.0;
+          for (int a = 0; a < 3; ++a)
           {
-            const double d = Distance2(p, pos + 3 * s);
-            if (d < bestD || (d == bestD && s < best))
-            {
-              bestD = d;
-              best = s;
-            }
+            const double g = t[a] < box[a] ? box[a] - t[a] : (t[a] > box[3 + a] ? t[a] - box[3 + a] : 0.0);
+            g2 += g * g;
+          }
+          if (!(g2 > reach) || !std::isfinite(r))
+          {
+            candidates.emplace_back(g2, s);
+          }
+        }
+      }
+      if (candidates.empty())
+      {
+        continue;
+      }
+      // Pass 2: those candidates, nearest the box first; a point lies in the
+      // box, so it is at least the box gap away from a candidate (ties: the
+      // lower sample index).
+      std::sort(candidates.begin(), candidates.end());
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        Index best = assign[i];
+        double bestD = distance2[i];
+        for (const auto& candidate : candidates)
+        {
+          if (candidate.first > bestD)
+          {
+            break;
+          }
+          const Index s = candidate.second;
+          const double d = Distance2(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
           }
         }
         assign[i] = best;
@@ -265,6 +288,5 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
     }
   });
   samples.Position.swap(next);
-  samples.UpdateBoxes(execution);
 }
 } // namespace asmcore

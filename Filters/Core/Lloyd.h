@@ -28,10 +28,7 @@ struct VTKASMFILTERS_EXPORT SampleSet
   std::vector<double> Position;    ///< 3 per sample
   std::vector<char> Fixed;         ///< key samples do not move
   std::vector<Index> Start;        ///< cell c owns samples [Start[c], Start[c+1])
-  std::vector<double> Box;         ///< per cell: bounds of its samples (6 values), for pruning
   Index Size() const { return static_cast<Index>(this->Fixed.size()); }
-  /// Recompute Box from the positions.
-  void UpdateBoxes(const Execution& execution);
 };
 
 /// Place the free samples of cell c (slots Start[c] + fixedCount .. Start[c+1];

@@ -53,12 +53,12 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool CoverEveryCell = true;    ///< every non-empty cell gets a sample when N_s allows
   double BudgetExponent = 0.5;   ///< gamma of N_c ~ w_c * n_c^gamma (the paper: 1)
   int LloydIterations = 4;       ///< inside a cell; 0: median splits of the non-key points
-  int CrossCellIterations = 2;   ///< across cell borders, clamped to MaxCrossCellIterations
+  int CrossCellIterations = 1;   ///< across cell borders, clamped to MaxCrossCellIterations
   double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
   bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre
-  bool FillHoles = false;        ///< bounded hole filling (global; not for distributed runs)
+  bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
-  int HoleFillRounds = 3;         ///< rounds of hole filling, each followed by a Lloyd step
+  int HoleFillRounds = 2;         ///< rounds of hole filling, each followed by a Lloyd step
 };
 
 /// One output sample: a cluster of input points.

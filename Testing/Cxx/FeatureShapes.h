@@ -20,8 +20,8 @@ struct Shape
   double Spacing(std::size_t n) const { return std::sqrt(this->Area / static_cast<double>(n)); }
 };
 
-/// A closed cone: apex (0, 0, height), base disc of `radius` at z = 0; n
-/// random points, uniform in area.
+/// A closed cone: apex (0, 0, height), base disc of `radius` at z = 0; the
+/// apex and n - 1 random points, uniform in area.
 inline Shape Cone(std::size_t n, double radius = 0.3, double height = 1.0, unsigned seed = 3)
 {
   Shape s;
@@ -30,7 +30,8 @@ inline Shape Cone(std::size_t n, double radius = 0.3, double height = 1.0, unsig
   s.Area = lateral + base;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (std::size_t i = 0; i < n; ++i)
+  Add(s.Points, 0.0, 0.0, height);
+  for (std::size_t i = 1; i < n; ++i)
   {
     const double t = 2.0 * M_PI * u(rng);
     const double r = radius * std::sqrt(u(rng)); // uniform on a disc / on the unrolled cone
@@ -47,8 +48,8 @@ inline Shape Cone(std::size_t n, double radius = 0.3, double height = 1.0, unsig
   return s;
 }
 
-/// The surface of the box [0, a] x [0, b] x [0, c]; n random points, uniform
-/// in area; its 8 corners are the features.
+/// The surface of the box [0, a] x [0, b] x [0, c]: its 8 corners (the
+/// features) and n - 8 random points, uniform in area.
 inline Shape Box(std::size_t n, double a = 1.0, double b = 0.7, double c = 0.4, unsigned seed = 5)
 {
   Shape s;
@@ -57,7 +58,11 @@ inline Shape Box(std::size_t n, double a = 1.0, double b = 0.7, double c = 0.4, 
   const double size[3] = { a, b, c };
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (std::size_t i = 0; i < n; ++i)
+  for (int k = 0; k < 8; ++k)
+  {
+    Add(s.Points, (k & 1) ? a : 0.0, (k & 2) ? b : 0.0, (k & 4) ? c : 0.0);
+  }
+  for (std::size_t i = 8; i < n; ++i)
   {
     double pick = u(rng) * 0.5 * s.Area;
     int axis = 0;

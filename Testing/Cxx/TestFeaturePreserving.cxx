@@ -9,6 +9,7 @@
 #include "FeatureShapes.h"
 #include "FilterHelpers.h"
 
+#include "vtkDoubleArray.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 
@@ -104,6 +105,8 @@ TEST(FeaturePreserving, TiltedPlaneCutByTheGridHasNoKeyPoints)
 
 TEST(FeaturePreserving, ConeApexAndBoxCornersAreKept)
 {
+  // The apex and the corners are input points (as a CAD sampling would
+  // have them); the literal reading keeps band centroids, which miss them.
   for (Index target : { 200, 1000, 4000 })
   {
     const Shape cone = Cone(40000);
@@ -228,12 +231,14 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "default", [](vtkASMSimplify*) {} },
     { "ValidateKeyPointsOff", [](vtkASMSimplify* f) { f->ValidateKeyPointsOff(); } },
     { "KeyPointRadius", [](vtkASMSimplify* f) { f->SetKeyPointRadius(0.25); } },
+    { "KeyPointProminence", [](vtkASMSimplify* f) { f->SetKeyPointProminence(0.5); } },
     { "InPlaneKeyPointsOff", [](vtkASMSimplify* f) { f->InPlaneKeyPointsOff(); } },
     { "ExtremeKeyPointsOff", [](vtkASMSimplify* f) { f->ExtremeKeyPointsOff(); } },
     { "CoverEveryCellOff", [](vtkASMSimplify* f) { f->CoverEveryCellOff(); } },
     { "BudgetExponent", [](vtkASMSimplify* f) { f->SetBudgetExponent(1.0); } },
     { "LloydIterations", [](vtkASMSimplify* f) { f->SetLloydIterations(0); } },
     { "CrossCellIterations", [](vtkASMSimplify* f) { f->SetCrossCellIterations(0); } },
+    { "InputPointSamplesOff", [](vtkASMSimplify* f) { f->InputPointSamplesOff(); } },
     { "FillHolesOn", [](vtkASMSimplify* f) { f->FillHolesOn(); } },
     { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
@@ -276,4 +281,54 @@ TEST(FeaturePreserving, DefaultModeIsFeaturePreserving)
   EXPECT_FALSE(filter->GetFillHoles());
   filter->SetModeToPaper();
   EXPECT_EQ(filter->GetMode(), vtkASMSimplify::PAPER);
+}
+
+TEST(FeaturePreserving, PropagatesAttributes)
+{
+  // Arrays equal to the coordinates: averaged over each cluster. With
+  // InputPointSamples off a sample is its cluster's centroid, so the
+  // averaged array equals the output point; by default the output point is
+  // the representative input point and the array still holds the mean.
+  const Cloud c = asmtest::Sphere(6000, 1.0, 3);
+  auto input = ToPolyData(c);
+  vtkNew<vtkDoubleArray> position;
+  position->SetName("Position");
+  position->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    position->InsertNextTuple(c.data() + 3 * i);
+  }
+  input->GetPointData()->AddArray(position);
+  for (bool inputPoints : { false, true })
+  {
+    FilterRun run;
+    run.Filter->SetInputPointSamples(inputPoints);
+    run.Filter->GenerateCurvatureOff();
+    run.Filter->SetOutputFraction(0.1);
+    vtkPolyData* out = run.Execute(input);
+    ASSERT_EQ(out->GetNumberOfPoints(), 600);
+    auto* mean = out->GetPointData()->GetArray("Position");
+    auto* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
+    auto* keys = out->GetPointData()->GetArray("KeyPoint");
+    ASSERT_NE(mean, nullptr);
+    for (vtkIdType i = 0; i < 600; ++i)
+    {
+      double p[3], m[3], r[3];
+      out->GetPoint(i, p);
+      mean->GetTuple(i, m);
+      input->GetPoint(static_cast<vtkIdType>(ids->GetTuple1(i)), r);
+      for (int a = 0; a < 3; ++a)
+      {
+        if (inputPoints || keys->GetTuple1(i) > 0)
+        {
+          EXPECT_NEAR(p[a], r[a], 1e-12) << "an input point";
+        }
+        else
+        {
+          EXPECT_NEAR(p[a], m[a], 1e-12) << "the cluster centroid";
+        }
+        EXPECT_NEAR(m[a], p[a], 0.2) << "the cluster mean is near the sample";
+      }
+    }
+  }
 }
