@@ -185,7 +185,8 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.InPlaneKeyPoints = false; }, [](auto& p) { p.ExtremeKeyPoints = false; },
     [](auto& p) { p.CoverEveryCell = false; }, [](auto& p) { p.BudgetExponent = 1.0; },
     [](auto& p) { p.LloydIterations = 0; }, [](auto& p) { p.CrossCellIterations = 0; },
-    [](auto& p) { p.FillHoles = true; }, [](auto& p) { p.Snap = true; } };
+    [](auto& p) { p.FillHoles = false; }, [](auto& p) { p.Snap = true; },
+    [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
@@ -239,7 +240,8 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "LloydIterations", [](vtkASMSimplify* f) { f->SetLloydIterations(0); } },
     { "CrossCellIterations", [](vtkASMSimplify* f) { f->SetCrossCellIterations(0); } },
     { "InputPointSamplesOff", [](vtkASMSimplify* f) { f->InputPointSamplesOff(); } },
-    { "FillHolesOn", [](vtkASMSimplify* f) { f->FillHolesOn(); } },
+    { "FillHolesOff", [](vtkASMSimplify* f) { f->FillHolesOff(); } },
+    { "HoleFillFraction", [](vtkASMSimplify* f) { f->SetHoleFillFraction(0.1); } },
     { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   std::vector<std::vector<double>> results;
@@ -271,14 +273,25 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
 
 TEST(FeaturePreserving, DefaultModeIsFeaturePreserving)
 {
+  // The filter's defaults are the core's.
   vtkNew<vtkASMSimplify> filter;
+  const asmcore::SimplifyParameters core;
   EXPECT_EQ(filter->GetMode(), vtkASMSimplify::FEATURE_PRESERVING);
+  EXPECT_EQ(core.Mode, asmcore::SimplifyMode::FeaturePreserving);
+  EXPECT_EQ(filter->GetValidateKeyPoints(), core.ValidateKeyPoints);
+  EXPECT_EQ(filter->GetKeyPointRadius(), core.KeyPointRadius);
+  EXPECT_EQ(filter->GetKeyPointProminence(), core.KeyPointProminence);
+  EXPECT_EQ(filter->GetInPlaneKeyPoints(), core.InPlaneKeyPoints);
+  EXPECT_EQ(filter->GetExtremeKeyPoints(), core.ExtremeKeyPoints);
+  EXPECT_EQ(filter->GetCoverEveryCell(), core.CoverEveryCell);
+  EXPECT_EQ(filter->GetBudgetExponent(), core.BudgetExponent);
+  EXPECT_EQ(filter->GetLloydIterations(), core.LloydIterations);
+  EXPECT_EQ(filter->GetCrossCellIterations(), core.CrossCellIterations);
+  EXPECT_EQ(filter->GetInputPointSamples(), core.InputPointSamples);
+  EXPECT_EQ(filter->GetFillHoles(), core.FillHoles);
+  EXPECT_EQ(filter->GetHoleFillFraction(), core.HoleFillFraction);
   EXPECT_TRUE(filter->GetValidateKeyPoints());
-  EXPECT_TRUE(filter->GetInPlaneKeyPoints());
-  EXPECT_TRUE(filter->GetExtremeKeyPoints());
-  EXPECT_TRUE(filter->GetCoverEveryCell());
   EXPECT_EQ(filter->GetBudgetExponent(), 0.5);
-  EXPECT_FALSE(filter->GetFillHoles());
   filter->SetModeToPaper();
   EXPECT_EQ(filter->GetMode(), vtkASMSimplify::PAPER);
 }
