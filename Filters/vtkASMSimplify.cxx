@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -187,6 +188,9 @@ bool vtkASMSimplify::CheckParameters()
 int vtkASMSimplify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort (ParaView's Cancel) stops one run; VTK 9.2's executive never
+  // clears the flag, so without this every later run would abort at once.
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -207,9 +211,9 @@ int vtkASMSimplify::RequestData(
   }
 
   // Coordinates, finite points, and the requested output size.
-  std::vector<double> coordinateCopy;
-  const double* xyz = asmvtk::CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
-  const std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
+  std::unique_ptr<double[]> coordinateCopy;
+  std::vector<Index> ids;
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids);
   const auto valid = static_cast<vtkIdType>(ids.size());
   const vtkIdType skipped = numberOfPoints - valid;
   if (skipped > 0)
@@ -348,7 +352,7 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids);
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
     {

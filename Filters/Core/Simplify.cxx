@@ -130,19 +130,19 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 1. Hash the points into the grid.
-  const Bounds bounds = ComputeBounds(xyz, ids);
+  const Bounds bounds = ComputeBounds(xyz, ids, execution);
   double cellSize = parameters.CellSize;
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
   {
     const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;
