@@ -58,7 +58,7 @@ struct AggregateWorker
       {
         const asmcore::Sample& sample = result.Samples[s];
         auto dst = outTuples[s];
-        if (snap)
+        if (snap || sample.ClusterSize == 0)
         {
           const auto src = inTuples[sample.Representative];
           std::copy(src.begin(), src.end(), dst.begin());
@@ -263,6 +263,20 @@ int vtkASMSimplify::RequestData(
   parameters.CurvatureWeight = this->CurvatureWeight;
   parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
   parameters.Snap = this->SnapToInputPoints;
+  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
+                                        : asmcore::SimplifyMode::FeaturePreserving;
+  parameters.ValidateKeyPoints = this->ValidateKeyPoints;
+  parameters.KeyPointRadius = this->KeyPointRadius;
+  parameters.KeyPointProminence = this->KeyPointProminence;
+  parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
+  parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
+  parameters.CoverEveryCell = this->CoverEveryCell;
+  parameters.BudgetExponent = this->BudgetExponent;
+  parameters.LloydIterations = this->LloydIterations;
+  parameters.CrossCellIterations = this->CrossCellIterations;
+  parameters.InputPointSamples = this->InputPointSamples;
+  parameters.FillHoles = this->FillHoles;
+  parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = input->GetPoints()->GetDataType() == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
@@ -363,6 +377,19 @@ int vtkASMSimplify::RequestData(
 void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == PAPER ? "Paper" : "FeaturePreserving") << "\n";
+  os << indent << "ValidateKeyPoints: " << this->ValidateKeyPoints << "\n";
+  os << indent << "KeyPointRadius: " << this->KeyPointRadius << "\n";
+  os << indent << "KeyPointProminence: " << this->KeyPointProminence << "\n";
+  os << indent << "InPlaneKeyPoints: " << this->InPlaneKeyPoints << "\n";
+  os << indent << "ExtremeKeyPoints: " << this->ExtremeKeyPoints << "\n";
+  os << indent << "CoverEveryCell: " << this->CoverEveryCell << "\n";
+  os << indent << "BudgetExponent: " << this->BudgetExponent << "\n";
+  os << indent << "LloydIterations: " << this->LloydIterations << "\n";
+  os << indent << "CrossCellIterations: " << this->CrossCellIterations << "\n";
+  os << indent << "InputPointSamples: " << this->InputPointSamples << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
+  os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
   os << indent << "TargetMode: "
      << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";
   os << indent << "OutputFraction: " << this->OutputFraction << "\n";

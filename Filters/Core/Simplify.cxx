@@ -3,6 +3,7 @@
 
 #include "Budget.h"
 #include "CellFrame.h"
+#include "FeatureSimplify.h"
 #include "Grid.h"
 #include "KeyPoints.h"
 
@@ -116,6 +117,10 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
+  if (parameters.Mode == SimplifyMode::FeaturePreserving)
+  {
+    return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
+  }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
   const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));

@@ -71,6 +71,7 @@ TEST(ASMSimplify, BunnyAtFivePercentWithArraysAndFieldData)
 {
   auto input = ReadPLY("bunny.ply");
   FilterRun run;
+  run.Filter->SetModeToPaper(); // key points are band centroids: AKPE > 0
   vtkPolyData* out = run.Execute(input);
   ASSERT_EQ(out->GetNumberOfPoints(), 1797); // round(0.05 * 35947)
   vtkPointData* pd = out->GetPointData();
@@ -173,6 +174,7 @@ TEST(ASMSimplify, AveragesInputArraysOverClusters)
   input->GetPointData()->AddArray(unnamed);
 
   FilterRun run;
+  run.Filter->SetModeToPaper(); // samples are cluster centroids (see TestFeaturePreserving)
   run.Filter->SetOutputFraction(0.1);
   vtkPolyData* out = run.Execute(input);
   ASSERT_EQ(out->GetNumberOfPoints(), 600);
@@ -283,6 +285,7 @@ TEST(ASMSimplify, SameSeedSameOutputOtherSeedOtherChoice)
   auto input = ReadPLY("fandisk.ply");
   auto run = [&](int seed) {
     FilterRun r;
+    r.Filter->SetModeToPaper(); // the random choice among key points is the paper's
     r.Filter->SetOutputFraction(0.01);
     r.Filter->SetRandomSeed(seed);
     vtkPolyData* out = r.Execute(input);
