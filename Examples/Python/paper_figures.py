@@ -56,6 +56,8 @@ def main():
     parser.add_argument("-o", "--output", default="paper_figures.png")
     parser.add_argument("--fractions", type=float, nargs="+", default=[0.01, 0.05, 0.2])
     parser.add_argument("--size", type=int, nargs=2, default=[1200, 800], help="image width and height")
+    parser.add_argument("--mode", choices=["Paper", "Feature Preserving"], default="Paper",
+                        help="vtkASMSimplify Mode (default: the paper's literal pipeline)")
     parser.add_argument("--plugin", help="path of the ASM plugin library (ASM.so)")
     args = parser.parse_args()
 
@@ -82,7 +84,7 @@ def main():
 
     results = []
     for fraction in args.fractions:
-        asm = ASMSimplify(Input=reader, OutputFraction=fraction)  # noqa: F821 (from the plugin)
+        asm = ASMSimplify(Input=reader, OutputFraction=fraction, Mode=args.mode)  # noqa: F821 (from the plugin)
         asm.UpdatePipeline()
         magnitude = Calculator(Input=asm, ResultArrayName="AbsMeanCurvature", Function="abs(MeanCurvature)")
         keys = Threshold(Input=asm, Scalars=["POINTS", "KeyPoint"])
