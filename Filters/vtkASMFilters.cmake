@@ -38,6 +38,7 @@ set(ASM_FILTERS_CORE
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
+  Core/GridOccupancy.h
   vtkASMFilterUtilities.h
 )
 # ============================================================================
