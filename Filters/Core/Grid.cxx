@@ -140,6 +140,36 @@ Index CountOccupiedCells(const double* xyz, const std::vector<Index>& ids, const
   return static_cast<Index>(std::unique(keys.begin(), keys.end()) - keys.begin());
 }
 
+namespace
+{
+// Non-empty cells of `spec`, each counted by min(1, points / minPoints): a
+// cell too sparse to get a sample of its own (a far outlier, a stray point)
+// counts for its share only, so a few scattered points cannot drive the
+// cell size of the whole cloud.
+double EffectiveOccupiedCells(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, double minPoints)
+{
+  std::vector<std::uint64_t> keys(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    keys[i] = spec.KeyOf(xyz + 3 * ids[i]);
+  }
+  std::sort(keys.begin(), keys.end());
+  double count = 0.0;
+  for (std::size_t i = 0; i < keys.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j] == keys[i])
+    {
+      ++j;
+    }
+    count += std::min(1.0, static_cast<double>(j - i) / minPoints);
+    i = j;
+  }
+  return count;
+}
+} // namespace
+
 double AutomaticCellSize(
   const double* xyz, const std::vector<Index>& ids, const Bounds& bounds, double targetCells)
 {
@@ -156,6 +186,10 @@ double AutomaticCellSize(
   }
   // Start from the guess that the points sample a surface (count ~ h^-2),
   // then correct with the measured count and the measured local exponent.
+  // A cell counts fully when it holds at least 1/8 of the mean number of
+  // points per target cell (with 8 samples per cell: one sample's worth).
+  const double minPoints =
+    std::max(1.0, static_cast<double>(ids.size()) / targetCells / 8.0);
   double h = maxExtent / std::sqrt(targetCells);
   double bestH = oneCell;
   double bestErr = std::abs(std::log(1.0 / targetCells));
@@ -164,7 +198,7 @@ double AutomaticCellSize(
   for (int iteration = 0; iteration < 12; ++iteration)
   {
     h = GridSpec::Make(bounds, h).CellSize;
-    const double count = static_cast<double>(CountOccupiedCells(xyz, ids, GridSpec::Make(bounds, h)));
+    const double count = EffectiveOccupiedCells(xyz, ids, GridSpec::Make(bounds, h), minPoints);
     const double err = std::abs(std::log(count / targetCells));
     if (err < bestErr)
     {
