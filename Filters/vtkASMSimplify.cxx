@@ -176,7 +176,9 @@ int vtkASMSimplify::RequestData(
   auto clusterSizes = asmvtk::NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
   auto variation = asmvtk::NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
   auto originalIds = asmvtk::NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
-  const bool nameTaken = inPD->GetAbstractArray("Normals") != nullptr;
+  vtkAbstractArray* inputNamedNormals = inPD->GetAbstractArray("Normals");
+  const bool nameTaken = // by an input array that is carried (see AggregatePointData)
+    inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;
   auto pcaNormals = asmvtk::NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
   for (vtkIdType s = 0; s < count; ++s)
   {

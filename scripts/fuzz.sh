@@ -23,5 +23,5 @@ mkdir -p "$work"
 cp Testing/Fuzz/corpus/simplify/* "$work"/
 
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  build-fuzz/fuzz_simplify -seed=1 -runs="${ASM_FUZZ_RUNS:-30000}" -max_len=4096 \
+  build-fuzz/fuzz_simplify -seed=1 -runs="${ASM_FUZZ_RUNS:-6000}" -max_len=4096 \
     -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 "$@" "$work"

@@ -362,3 +362,46 @@ TEST(HostileInputs, OneKilometreByOneMillimetreStrip)
   EXPECT_GE(tiny.Messages->Warnings, 1);
   EXPECT_GT(FieldValue(out, "CellSize"), 0.99 * 1000.0 / (1 << 21));
 }
+
+TEST(HostileInputs, ArraysShorterThanThePointsAreDroppedWithAWarning)
+{
+  // A malformed dataset: point-data arrays (normals included) with fewer
+  // tuples than points must not be read past their end.
+  auto input = ToPolyData(asmtest::Sphere(2000, 1.0, 9));
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(10);
+  normals->FillValue(1.0f);
+  input->GetPointData()->SetNormals(normals);
+  vtkNew<vtkUnsignedCharArray> flags;
+  flags->SetName("Flags");
+  flags->SetNumberOfTuples(1999);
+  flags->FillValue(1);
+  input->GetPointData()->AddArray(flags);
+  vtkNew<vtkFloatArray> good;
+  good->SetName("Good");
+  good->SetNumberOfTuples(2000);
+  good->FillValue(2.0f);
+  input->GetPointData()->AddArray(good);
+
+  FilterRun run;
+  run.Count(100);
+  vtkPolyData* out = run.Execute(input);
+  ASSERT_EQ(out->GetNumberOfPoints(), 100);
+  EXPECT_EQ(run.Messages->Warnings, 2);
+  EXPECT_EQ(out->GetPointData()->GetArray("Flags"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("Good"), nullptr);
+  EXPECT_EQ(out->GetPointData()->GetArray("Good")->GetTuple1(99), 2.0);
+  ASSERT_NE(out->GetPointData()->GetNormals(), nullptr) << "the PCA normals take their place";
+  EXPECT_EQ(out->GetPointData()->GetNormals()->GetNumberOfTuples(), 100);
+
+  // vtkKeyPointError with such a simplified cloud.
+  auto simplified = ToPolyData(asmtest::Sphere(100, 1.0, 10));
+  simplified->GetPointData()->SetNormals(normals);
+  vtkNew<vtkKeyPointError> error;
+  error->SetInputData(0, input);
+  error->SetInputData(1, simplified);
+  error->Update();
+  EXPECT_EQ(error->GetOutput(0)->GetNumberOfPoints(), 100);
+}
