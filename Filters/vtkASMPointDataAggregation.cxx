@@ -118,15 +118,32 @@ struct MeanWorker
     }
   }
 
-  // The common case, with raw pointers.
+  // The common case, with raw pointers; 1 and 3 components (scalars,
+  // vectors, normals) with a compile-time count.
   template <typename T>
   void operator()(vtkAOSDataArrayTemplate<T>* in, vtkDataArray* outBase,
     const SimplifyResult& result, bool renormalise, bool) const
   {
     auto* out = static_cast<vtkAOSDataArrayTemplate<T>*>(outBase);
-    const int nc = in->GetNumberOfComponents();
-    const T* src = in->GetPointer(0);
-    T* dst = out->GetPointer(0);
+    switch (in->GetNumberOfComponents())
+    {
+      case 1:
+        MeanAOS<1>(in->GetPointer(0), out->GetPointer(0), 1, result, renormalise);
+        break;
+      case 3:
+        MeanAOS<3>(in->GetPointer(0), out->GetPointer(0), 3, result, renormalise);
+        break;
+      default:
+        MeanAOS<0>(in->GetPointer(0), out->GetPointer(0), in->GetNumberOfComponents(), result,
+          renormalise);
+    }
+  }
+
+  template <int NC, typename T>
+  static void MeanAOS(
+    const T* src, T* dst, int dynamicComponents, const SimplifyResult& result, bool renormalise)
+  {
+    const int nc = NC > 0 ? NC : dynamicComponents;
     vtkSMPTools::For(0, static_cast<vtkIdType>(result.Samples.size()),
       [&](vtkIdType begin, vtkIdType end) {
         std::vector<double> sum(static_cast<std::size_t>(nc));
