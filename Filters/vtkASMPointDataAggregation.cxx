@@ -38,6 +38,10 @@ bool ClusterMean(const SimplifyResult& result, const asmcore::Sample& sample, in
   // The members that place the sample (its cluster proper), so the values
   // belong to the sample's position.
   const Index core = sample.CoreSize > 0 ? sample.CoreSize : sample.ClusterSize;
+  if (core <= 0)
+  {
+    return false; // an empty cluster: the representative's values
+  }
   for (Index m = 0; m < core; ++m)
   {
     const Index id = members[m];

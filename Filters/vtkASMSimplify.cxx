@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -71,6 +72,9 @@ bool vtkASMSimplify::CheckParameters()
 int vtkASMSimplify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort (ParaView's Cancel) stops one run; VTK 9.2's executive never
+  // clears the flag, so without this every later run would abort at once.
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -91,9 +95,9 @@ int vtkASMSimplify::RequestData(
   }
 
   // Coordinates, finite points, and the requested output size.
-  std::vector<double> coordinateCopy;
-  const double* xyz = asmvtk::CoordinatesAsDoubles(input->GetPoints(), coordinateCopy);
-  const std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
+  std::unique_ptr<double[]> coordinateCopy;
+  std::vector<Index> ids;
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids);
   const auto valid = static_cast<vtkIdType>(ids.size());
   const vtkIdType skipped = numberOfPoints - valid;
   if (skipped > 0)
@@ -116,17 +120,14 @@ int vtkASMSimplify::RequestData(
     target = valid;
   }
 
-  std::vector<double> normalCopy;
+  std::unique_ptr<double[]> normalCopy;
   const double* normals = nullptr;
   vtkPointData* inPD = input->GetPointData();
   if (vtkDataArray* inNormals = inPD->GetNormals())
   {
     if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
     {
-      normalCopy.resize(static_cast<std::size_t>(3 * numberOfPoints));
-      const auto range = vtk::DataArrayValueRange<3>(inNormals);
-      std::copy(range.begin(), range.end(), normalCopy.begin());
-      normals = normalCopy.data();
+      normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
     }
   }
 
@@ -146,6 +147,20 @@ int vtkASMSimplify::RequestData(
   parameters.CurvatureWeight = this->CurvatureWeight;
   parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
   parameters.Snap = this->SnapToInputPoints;
+  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
+                                        : asmcore::SimplifyMode::FeaturePreserving;
+  parameters.ValidateKeyPoints = this->ValidateKeyPoints;
+  parameters.KeyPointRadius = this->KeyPointRadius;
+  parameters.KeyPointProminence = this->KeyPointProminence;
+  parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
+  parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
+  parameters.CoverEveryCell = this->CoverEveryCell;
+  parameters.BudgetExponent = this->BudgetExponent;
+  parameters.LloydIterations = this->LloydIterations;
+  parameters.CrossCellIterations = this->CrossCellIterations;
+  parameters.InputPointSamples = this->InputPointSamples;
+  parameters.FillHoles = this->FillHoles;
+  parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = input->GetPoints()->GetDataType() == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
@@ -220,7 +235,7 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids);
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
     {
@@ -248,6 +263,19 @@ int vtkASMSimplify::RequestData(
 void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == PAPER ? "Paper" : "FeaturePreserving") << "\n";
+  os << indent << "ValidateKeyPoints: " << this->ValidateKeyPoints << "\n";
+  os << indent << "KeyPointRadius: " << this->KeyPointRadius << "\n";
+  os << indent << "KeyPointProminence: " << this->KeyPointProminence << "\n";
+  os << indent << "InPlaneKeyPoints: " << this->InPlaneKeyPoints << "\n";
+  os << indent << "ExtremeKeyPoints: " << this->ExtremeKeyPoints << "\n";
+  os << indent << "CoverEveryCell: " << this->CoverEveryCell << "\n";
+  os << indent << "BudgetExponent: " << this->BudgetExponent << "\n";
+  os << indent << "LloydIterations: " << this->LloydIterations << "\n";
+  os << indent << "CrossCellIterations: " << this->CrossCellIterations << "\n";
+  os << indent << "InputPointSamples: " << this->InputPointSamples << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
+  os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
   os << indent << "TargetMode: "
      << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";
   os << indent << "OutputFraction: " << this->OutputFraction << "\n";

@@ -17,7 +17,9 @@ PKGS=(
   # libFuzzer target (scripts/fuzz.sh): clang with its sanitizer/fuzzer runtimes
   clang-14 libclang-rt-14-dev
   # headless runs of pvpython / pvbatch / paraview
-  xvfb xauth
+  xvfb xauth libgl1-mesa-dri   # Xvfb + Mesa llvmpipe (software OpenGL) for the gui tests
+  # header-only CGAL: the CGAL peers of the quality benchmark (Benchmarks/)
+  libcgal-dev
 )
 
 missing=()

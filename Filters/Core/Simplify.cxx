@@ -3,6 +3,7 @@
 
 #include "Budget.h"
 #include "CellFrame.h"
+#include "FeatureSimplify.h"
 #include "Grid.h"
 #include "KeyPoints.h"
 #include "Neighbors.h"
@@ -196,6 +197,10 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
+  if (parameters.Mode == SimplifyMode::FeaturePreserving)
+  {
+    return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
+  }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
   const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
@@ -205,19 +210,19 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 1. Hash the points into the grid.
-  const Bounds bounds = ComputeBounds(xyz, ids);
+  const Bounds bounds = ComputeBounds(xyz, ids, execution);
   double cellSize = parameters.CellSize;
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
   {
     const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;

@@ -19,8 +19,9 @@
 //   header (16 bytes), then points of 7 bytes: a flag byte and 3 x int16.
 //   header[0]   mode bits: 0 snap, 1 surface-variation weight, 2-3 degenerate
 //               shape (none, coplanar, collinear, one point), 4 float
-//               coordinates, 5 input normals; 6-7 free (new core modes go
-//               in ApplyModeBits, one line each)
+//               coordinates, 5 input normals, 6 paper mode (else
+//               feature-preserving); 7 free (new core modes go in
+//               ApplyModeBits, one line each)
 //   header[1-2] N_s (uint16)              header[3] cell size (0: automatic)
 //   header[4]   alpha (-0.05 .. 0.55)     header[5] error tolerance (0: off)
 //   header[6]   samples per cell (0..32)  header[7] random seed
@@ -74,11 +75,12 @@ struct Reader
 };
 
 // The core's options selected by the mode byte. A new mode of
-// SimplifyParameters is one more line here (bits 6 and 7 are free).
+// SimplifyParameters is one more line here (bit 7 is free).
 void ApplyModeBits(std::uint8_t mode, asmcore::SimplifyParameters& p)
 {
   p.Snap = (mode & 1) != 0;
   p.Weight = (mode & 2) ? asmcore::WeightMode::SurfaceVariation : asmcore::WeightMode::Uniform;
+  p.Mode = (mode & 64) ? asmcore::SimplifyMode::Paper : asmcore::SimplifyMode::FeaturePreserving;
 }
 
 struct Case
@@ -243,8 +245,16 @@ void CheckSimplify(const Case& k, const std::vector<Index>& ids, const asmcore::
   double maxKeyError = 0.0;
   for (const asmcore::Sample& s : r.Samples)
   {
-    FUZZ_CHECK(s.ClusterSize >= 1);
-    FUZZ_CHECK(s.CoreSize >= 1 && s.CoreSize <= s.ClusterSize);
+    // Paper mode: every sample has members, the first CoreSize of which
+    // place it. The feature-preserving mode leaves CoreSize at 0 (its
+    // clusters are the points nearest each sample, possibly none).
+    FUZZ_CHECK(s.ClusterSize >= 0 && s.CoreSize >= 0 && s.CoreSize <= s.ClusterSize);
+    if (k.Parameters.Mode == asmcore::SimplifyMode::Paper)
+    {
+      FUZZ_CHECK(s.ClusterSize >= 1 && s.CoreSize >= 1);
+    }
+    FUZZ_CHECK(s.Representative >= 0 && s.Representative < static_cast<Index>(finite.size()) &&
+      finite[s.Representative]);
     FUZZ_CHECK(s.MemberBegin >= 0 && s.MemberBegin + s.ClusterSize <= total);
     bool representativeIsMember = false;
     for (Index m = s.MemberBegin; m < s.MemberBegin + s.ClusterSize; ++m)
@@ -258,14 +268,14 @@ void CheckSimplify(const Case& k, const std::vector<Index>& ids, const asmcore::
       // The representative is one of the members that place the sample.
       representativeIsMember |= id == s.Representative && m < s.MemberBegin + s.CoreSize;
     }
-    FUZZ_CHECK(representativeIsMember);
+    FUZZ_CHECK(representativeIsMember || s.CoreSize == 0);
     for (int a = 0; a < 3; ++a)
     {
       FUZZ_CHECK(std::isfinite(s.Position[a]));
       FUZZ_CHECK(std::isfinite(s.Normal[a]));
       FUZZ_CHECK(s.Position[a] >= b.Min[a] - slack && s.Position[a] <= b.Max[a] + slack);
     }
-    if (k.Parameters.Snap || s.CoreSize == 1)
+    if (k.Parameters.Snap || (s.CoreSize == 1 && s.ClusterSize == 1))
     {
       for (int a = 0; a < 3; ++a)
       {
