@@ -35,6 +35,11 @@ set(ASM_FILTERS_CORE
   Curvature
   Metrics
 )
+# Private VTK-side helpers of the filters: <Name>.h + <Name>.cxx in Filters/,
+# not wrapped and not installed.
+set(ASM_FILTERS_PRIVATE
+  vtkASMPointDataAggregation
+)
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
@@ -51,6 +56,10 @@ foreach (_asm_class IN LISTS ASM_FILTERS_CLASSES)
 endforeach ()
 
 set(_asm_private_headers)
+foreach (_asm_private IN LISTS ASM_FILTERS_PRIVATE)
+  list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_private}.cxx")
+  list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_private}.h")
+endforeach ()
 foreach (_asm_core IN LISTS ASM_FILTERS_CORE)
   list(APPEND _asm_sources "${_asm_filters_dir}/Core/${_asm_core}.cxx")
   list(APPEND _asm_private_headers "${_asm_filters_dir}/Core/${_asm_core}.h")

@@ -5,6 +5,7 @@
 #include "Core/Neighbors.h"
 #include "Core/Simplify.h"
 #include "vtkASMFilterUtilities.h"
+#include "vtkASMPointDataAggregation.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -37,123 +38,6 @@ vtkStandardNewMacro(vtkASMSimplify);
 namespace
 {
 using asmcore::Index;
-
-// Fills `out` (same class as `in`) with one tuple per sample: the mean of the
-// cluster's tuples (rounded for integer types, renormalised for normals), or
-// the representative's tuple when snapping.
-struct AggregateWorker
-{
-  template <typename ArrayT>
-  void operator()(ArrayT* in, vtkDataArray* outBase, const asmcore::SimplifyResult& result,
-    bool snap, bool renormalise, bool parallel) const
-  {
-    auto* out = static_cast<ArrayT*>(outBase);
-    using T = vtk::GetAPIType<ArrayT>;
-    const auto inTuples = vtk::DataArrayTupleRange(in);
-    auto outTuples = vtk::DataArrayTupleRange(out);
-    const int components = in->GetNumberOfComponents();
-    auto body = [&](vtkIdType begin, vtkIdType end) {
-      std::vector<double> mean(static_cast<std::size_t>(components));
-      for (vtkIdType s = begin; s < end; ++s)
-      {
-        const asmcore::Sample& sample = result.Samples[s];
-        auto dst = outTuples[s];
-        if (snap || sample.ClusterSize == 0)
-        {
-          const auto src = inTuples[sample.Representative];
-          std::copy(src.begin(), src.end(), dst.begin());
-          continue;
-        }
-        std::fill(mean.begin(), mean.end(), 0.0);
-        for (Index m = 0; m < sample.ClusterSize; ++m)
-        {
-          const auto src = inTuples[result.Members[sample.MemberBegin + m]];
-          for (int c = 0; c < components; ++c)
-          {
-            mean[c] += static_cast<double>(src[c]);
-          }
-        }
-        double norm = 0.0;
-        for (int c = 0; c < components; ++c)
-        {
-          mean[c] /= static_cast<double>(sample.ClusterSize);
-          norm += mean[c] * mean[c];
-        }
-        norm = std::sqrt(norm);
-        for (int c = 0; c < components; ++c)
-        {
-          double v = mean[c];
-          if (renormalise && norm > 0.0)
-          {
-            v /= norm;
-          }
-          if (std::is_integral<T>::value)
-          {
-            v = std::round(v);
-          }
-          dst[c] = static_cast<T>(v);
-        }
-      }
-    };
-    if (parallel)
-    {
-      vtkSMPTools::For(0, static_cast<vtkIdType>(result.Samples.size()), body);
-    }
-    else
-    {
-      body(0, static_cast<vtkIdType>(result.Samples.size()));
-    }
-  }
-};
-
-// One output array per input point-data array, same name, type, components
-// and attribute role.
-void AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
-  const asmcore::SimplifyResult& result, bool snap)
-{
-  const auto count = static_cast<vtkIdType>(result.Samples.size());
-  vtkNew<vtkIdList> representatives;
-  representatives->SetNumberOfIds(count);
-  for (vtkIdType s = 0; s < count; ++s)
-  {
-    representatives->SetId(s, result.Samples[s].Representative);
-  }
-  for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
-  {
-    vtkAbstractArray* in = inPD->GetAbstractArray(i);
-    vtkSmartPointer<vtkAbstractArray> out = vtk::TakeSmartPointer(in->NewInstance());
-    out->SetName(in->GetName());
-    out->SetNumberOfComponents(in->GetNumberOfComponents());
-    out->CopyComponentNames(in);
-    out->SetNumberOfTuples(count);
-    auto* inData = vtkDataArray::SafeDownCast(in);
-    if (inData)
-    {
-      const bool renormalise = inData == inPD->GetNormals();
-      AggregateWorker worker;
-      if (!vtkArrayDispatch::Dispatch::Execute(
-            inData, worker, vtkDataArray::SafeDownCast(out), result, snap, renormalise, true))
-      {
-        // Unusual array classes (e.g. vtkBitArray): generic API, one thread.
-        worker(inData, vtkDataArray::SafeDownCast(out), result, snap, renormalise, false);
-      }
-    }
-    else
-    {
-      // Strings, variants: the representative's value.
-      in->GetTuples(representatives, out);
-    }
-    const int index = outPD->AddArray(out);
-    for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)
-    {
-      if (inPD->GetAbstractAttribute(attribute) == in)
-      {
-        outPD->SetActiveAttribute(index, attribute);
-      }
-    }
-  }
-}
-
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -307,7 +191,9 @@ int vtkASMSimplify::RequestData(
   auto clusterSizes = asmvtk::NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
   auto variation = asmvtk::NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
   auto originalIds = asmvtk::NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
-  const bool nameTaken = inPD->GetAbstractArray("Normals") != nullptr;
+  vtkAbstractArray* inputNamedNormals = inPD->GetAbstractArray("Normals");
+  const bool nameTaken = // by an input array that is carried (see AggregatePointData)
+    inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;
   auto pcaNormals = asmvtk::NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
   for (vtkIdType s = 0; s < count; ++s)
   {
@@ -325,7 +211,7 @@ int vtkASMSimplify::RequestData(
 
   // Point data: the input's arrays aggregated, then the generated ones.
   vtkPointData* outPD = output->GetPointData();
-  AggregatePointData(inPD, outPD, result, this->SnapToInputPoints);
+  asmvtk::AggregatePointData(inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this);
   outPD->AddArray(keyFlags);
   outPD->AddArray(clusterSizes);
   outPD->AddArray(variation);

@@ -27,9 +27,13 @@
  *    the cell lies within the tolerance of the extreme input point it stands
  *    for.
  *
- * Output arrays: every input point-data array, aggregated over each sample's
- * cluster (numeric arrays averaged, the normals attribute renormalised;
- * with SnapToInputPoints on, the values of the snapped input point);
+ * Output arrays: every input point-data array, same class, name and
+ * attribute role, aggregated over each sample's cluster: float and double
+ * arrays averaged (NaN values ignored, the normals attribute renormalised);
+ * integer, id, bit, string and other categorical arrays take the value of the
+ * representative point (the member nearest the centroid, see
+ * "vtkOriginalPointIds"), never an average; with SnapToInputPoints on, every
+ * array takes the snapped input point's values;
  * "Normals" (float; the cell's PCA normal, oriented to agree with the input normals
  * when there are some, else away from the cloud's centroid; named "PCANormals"
  * if the input already has an array called "Normals"); "KeyPoint" (1 for
@@ -42,6 +46,13 @@
  * maximum distance, in data units, between each key point placed and the
  * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
  * "NumberOfSkippedPoints" (non-finite input points ignored).
+ *
+ * Messy input: points with NaN or infinite coordinates are skipped with a
+ * warning (counted in "NumberOfSkippedPoints"; OutputFraction is taken of the
+ * finite points); duplicates, far outliers, georeferenced float coordinates,
+ * very dense cells and very anisotropic bounds give exactly N_s points (see
+ * the README, "Messy data"). The input's field data is carried to the output.
+ * The input is never modified.
  *
  * Modes. The steps above are the paper read literally (Mode PAPER, kept
  * exactly to reproduce the paper). Measured against the usual downsamplers,

@@ -167,7 +167,8 @@ int vtkKeyPointError::RequestData(
     // Estimated at the finite simplified points, signed by their normals.
     std::vector<double> queries, normals;
     vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
-    const bool useNormals = inNormals && inNormals->GetNumberOfComponents() == 3;
+    const bool useNormals = inNormals && inNormals->GetNumberOfComponents() == 3 &&
+      inNormals->GetNumberOfTuples() >= n;
     for (Index id : simp.Ids)
     {
       queries.insert(queries.end(), simp.Xyz + 3 * id, simp.Xyz + 3 * id + 3);

@@ -14,6 +14,8 @@ PKGS=(
   libdouble-conversion-dev libtiff-dev libtheora-dev libglew-dev libgl2ps-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libopenmpi-dev python3-mpi4py libxt-dev
+  # libFuzzer target (scripts/fuzz.sh): clang with its sanitizer/fuzzer runtimes
+  clang-14 libclang-rt-14-dev
   # headless runs of pvpython / pvbatch / paraview
   xvfb xauth libgl1-mesa-dri   # Xvfb + Mesa llvmpipe (software OpenGL) for the gui tests
   # header-only CGAL: the CGAL peers of the quality benchmark (Benchmarks/)

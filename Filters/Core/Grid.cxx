@@ -275,20 +275,40 @@ Index CountOccupiedCells(
   return table.Size();
 }
 
-double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
-  double targetCells, const Execution& execution)
+namespace
+{
+// Non-empty cells of `spec`, each counted by min(1, points / minPoints): a
+// cell too sparse to get a sample of its own (a far outlier, a stray point)
+// counts for its share only.
+double EffectiveOccupiedCells(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, double minPoints)
+{
+  std::vector<std::uint64_t> keys(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    keys[i] = spec.KeyOf(xyz + 3 * ids[i]);
+  }
+  std::sort(keys.begin(), keys.end());
+  double count = 0.0;
+  for (std::size_t i = 0; i < keys.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j] == keys[i])
+    {
+      ++j;
+    }
+    count += std::min(1.0, static_cast<double>(j - i) / minPoints);
+    i = j;
+  }
+  return count;
+}
+
+// The cell edge for which count(spec) is about targetCells.
+template <typename Count>
+double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count)
 {
   const double maxExtent = bounds.MaxExtent();
-  if (ids.empty() || !(maxExtent > 0.0))
-  {
-    return GridSpec::Make(bounds, 0.0).CellSize; // one cell holds everything
-  }
-  // One cell for the whole cloud: slightly larger than the largest extent.
   const double oneCell = maxExtent * (1.0 + 1e-9);
-  if (targetCells <= 1.0)
-  {
-    return oneCell;
-  }
   // Start from the guess that the points sample a surface (count ~ h^-2),
   // then correct with the measured count and the measured local exponent.
   double h = maxExtent / std::sqrt(targetCells);
@@ -299,8 +319,8 @@ double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const
   for (int iteration = 0; iteration < 12; ++iteration)
   {
     h = GridSpec::Make(bounds, h).CellSize;
-    const double count = static_cast<double>(CountOccupiedCells(xyz, ids, GridSpec::Make(bounds, h), execution));
-    const double err = std::abs(std::log(count / targetCells));
+    const double n = count(GridSpec::Make(bounds, h));
+    const double err = std::abs(std::log(n / targetCells));
     if (err < bestErr)
     {
       bestErr = err;
@@ -310,16 +330,49 @@ double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const
     {
       break;
     }
-    if (prevCount > 0.0 && count != prevCount && h != prevH)
+    if (prevCount > 0.0 && n != prevCount && h != prevH)
     {
-      const double measured = -std::log(count / prevCount) / std::log(h / prevH);
+      const double measured = -std::log(n / prevCount) / std::log(h / prevH);
       dimension = std::min(3.0, std::max(0.5, measured));
     }
     prevH = h;
-    prevCount = count;
-    h *= std::pow(count / targetCells, 1.0 / dimension);
+    prevCount = n;
+    h *= std::pow(n / targetCells, 1.0 / dimension);
     h = std::min(h, oneCell);
   }
   return bestH;
+}
+} // namespace
+
+double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
+  double targetCells, const Execution& execution)
+{
+  const double maxExtent = bounds.MaxExtent();
+  if (ids.empty() || !(maxExtent > 0.0))
+  {
+    return GridSpec::Make(bounds, 0.0).CellSize; // one cell holds everything
+  }
+  // One cell for the whole cloud: slightly larger than the largest extent.
+  if (targetCells <= 1.0)
+  {
+    return maxExtent * (1.0 + 1e-9);
+  }
+  const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
+    return static_cast<double>(CountOccupiedCells(xyz, ids, spec, execution));
+  });
+  // Far outliers and stray points each occupy a cell of their own: when such
+  // sparse cells (fewer than 1/8 of the mean points per target cell, i.e.
+  // less than one sample's worth at 8 samples per cell) make up a fifth of
+  // the count, they would drive the cell size of the whole cloud. Search
+  // again, counting each cell by min(1, points / that minimum).
+  const double minPoints = std::max(1.0, static_cast<double>(ids.size()) / targetCells / 8.0);
+  const GridSpec found = GridSpec::Make(bounds, h);
+  const double raw = static_cast<double>(CountOccupiedCells(xyz, ids, found, execution));
+  if (EffectiveOccupiedCells(xyz, ids, found, minPoints) >= 0.8 * raw)
+  {
+    return h;
+  }
+  return SearchCellSize(bounds, targetCells,
+    [&](const GridSpec& spec) { return EffectiveOccupiedCells(xyz, ids, spec, minPoints); });
 }
 } // namespace asmcore

@@ -517,8 +517,11 @@ KeyClusters FindCellKeyClusters(const double* xyz, const Index* points, Index n,
   options.ErrorTolerance = rule.ErrorTolerance;
   options.LinkDistance = PlaneLinkDistance(q, rule.LinkFactor);
   // Rounding of the input coordinates (relative to their magnitude) and of
-  // the PCA must not make a flat cell look curved.
-  options.FlatTolerance = 8.0 * rule.CoordinateEpsilon *
+  // the PCA must not make a flat cell look curved. Rounding moves a point by
+  // at most sqrt(3)/2 ulp <= 0.87 eps |p| along the normal, so a flat cell's
+  // extent stays below 1.75 eps |p|: 2 eps |p| leaves georeferenced float
+  // clouds (1 m rounding at 1e7 m) their key points.
+  options.FlatTolerance = 2.0 * rule.CoordinateEpsilon *
     (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
   options.Snap = rule.Snap;
   return FindKeyClusters(q, options);

@@ -6,6 +6,7 @@
 #include "FeatureSimplify.h"
 #include "Grid.h"
 #include "KeyPoints.h"
+#include "Neighbors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,6 +106,85 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
     }
   }
   return groups;
+}
+
+// Every point that no sample took (cells with a budget of 0, key clusters
+// left out by §3.3 (iv)) joins the sample nearest to it, after that sample's
+// own members: the member lists become a partition of the points, and the
+// samples do not move.
+void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, SimplifyResult& result,
+  const Execution& execution)
+{
+  const Index total = static_cast<Index>(ids.size());
+  // The member slots no sample covers hold the unclaimed points.
+  std::vector<char> covered(static_cast<std::size_t>(total), 0);
+  Index claimed = 0;
+  for (const Sample& s : result.Samples)
+  {
+    std::fill(covered.begin() + s.MemberBegin, covered.begin() + s.MemberBegin + s.ClusterSize, 1);
+    claimed += s.ClusterSize;
+  }
+  if (claimed == total || result.Samples.empty())
+  {
+    return;
+  }
+  std::vector<Index> unclaimed;
+  unclaimed.reserve(static_cast<std::size_t>(total - claimed));
+  for (Index slot = 0; slot < total; ++slot)
+  {
+    if (!covered[slot])
+    {
+      unclaimed.push_back(result.Members[slot]);
+    }
+  }
+  const Index samples = static_cast<Index>(result.Samples.size());
+  std::vector<double> positions(static_cast<std::size_t>(3 * samples));
+  std::vector<Index> sampleIds(static_cast<std::size_t>(samples));
+  for (Index s = 0; s < samples; ++s)
+  {
+    std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
+    sampleIds[s] = s;
+  }
+  const Neighbors tree(positions.data(), sampleIds);
+  std::vector<Index> owner(unclaimed.size());
+  execution.Run(0, static_cast<Index>(unclaimed.size()), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      const NearestPoint nearest = tree.Nearest(xyz + 3 * unclaimed[i]);
+      owner[i] = nearest.Id >= 0 ? nearest.Id : 0;
+    }
+  });
+  // Lay the members out again: each sample's own, then those that joined it.
+  std::vector<Index> extra(static_cast<std::size_t>(samples) + 1, 0);
+  for (Index o : owner)
+  {
+    ++extra[o + 1];
+  }
+  for (Index s = 0; s < samples; ++s)
+  {
+    extra[s + 1] += extra[s]; // offsets into the joined points, by sample
+  }
+  std::vector<Index> joined(unclaimed.size());
+  {
+    std::vector<Index> fill(extra.begin(), extra.end() - 1);
+    for (std::size_t i = 0; i < unclaimed.size(); ++i)
+    {
+      joined[fill[owner[i]]++] = unclaimed[i];
+    }
+  }
+  std::vector<Index> members;
+  members.reserve(static_cast<std::size_t>(total));
+  for (Index s = 0; s < samples; ++s)
+  {
+    Sample& sample = result.Samples[s];
+    const Index begin = static_cast<Index>(members.size());
+    members.insert(members.end(), result.Members.begin() + sample.MemberBegin,
+      result.Members.begin() + sample.MemberBegin + sample.ClusterSize);
+    members.insert(members.end(), joined.begin() + extra[s], joined.begin() + extra[s + 1]);
+    sample.MemberBegin = begin;
+    sample.ClusterSize = static_cast<Index>(members.size()) - begin;
+  }
+  result.Members.swap(members);
 }
 
 std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
@@ -216,6 +296,9 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     {
       if (budget[c] == 0)
       {
+        // No sample: the points stay unclaimed in their slots.
+        std::copy(grid.CellPoints(c), grid.CellPoints(c) + grid.CellSizeOf(c),
+          result.Members.begin() + grid.CellStart[c]);
         continue;
       }
       const CellFrame& frame = frames[c];
@@ -270,6 +353,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
         s.Representative = points[nearest];
         s.MemberBegin = memberCursor;
         s.ClusterSize = static_cast<Index>(group.Members.size());
+        s.CoreSize = s.ClusterSize;
         s.SurfaceVariation = frame.SurfaceVariation();
         s.Key = group.Extreme >= 0;
         if (s.Key)
@@ -280,6 +364,25 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
         for (Index m : group.Members)
         {
           result.Members[memberCursor++] = points[m];
+        }
+      }
+      if (memberCursor < grid.CellStart[c + 1])
+      {
+        // Points in no group (§3.3 iv): unclaimed, after the cell's samples.
+        std::vector<char> grouped(static_cast<std::size_t>(n), 0);
+        for (const Group& group : groups)
+        {
+          for (Index m : group.Members)
+          {
+            grouped[m] = 1;
+          }
+        }
+        for (Index i = 0; i < n; ++i)
+        {
+          if (!grouped[i])
+          {
+            result.Members[memberCursor++] = points[i];
+          }
         }
       }
     }
@@ -308,6 +411,8 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
       return result;
     }
   }
+
+  AttachUnclaimedPoints(xyz, ids, result, execution);
 
   // Key point error of the run, summed in sample order (deterministic).
   double sum = 0.0;

@@ -69,6 +69,11 @@ struct VTKASMFILTERS_EXPORT Sample
   Index Representative = -1;        ///< input point nearest the centroid
   Index MemberBegin = 0;            ///< members are SimplifyResult::Members[MemberBegin, +ClusterSize)
   Index ClusterSize = 0;
+  /// The first CoreSize members place the sample (centroid, representative);
+  /// the others joined it as their nearest sample (points of cells or key
+  /// clusters left without a sample of their own), so that the samples'
+  /// members partition the input points.
+  Index CoreSize = 0;
   double SurfaceVariation = 0.0; ///< of the sample's grid cell
   double KeyError = 0.0;         ///< key samples: distance to the extreme input point
   bool Key = false;              ///< the sample is a key point
@@ -77,7 +82,7 @@ struct VTKASMFILTERS_EXPORT Sample
 struct VTKASMFILTERS_EXPORT SimplifyResult
 {
   std::vector<Sample> Samples;
-  std::vector<Index> Members; ///< input point ids, grouped by sample
+  std::vector<Index> Members; ///< input point ids, grouped by sample: a partition of `ids`
   double CellSize = 0.0;
   Index NumberOfCells = 0; ///< non-empty grid cells
   Index NumberOfKeyPoints = 0;

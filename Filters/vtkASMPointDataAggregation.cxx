@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkASMPointDataAggregation.h"
+
+#include "vtkAOSDataArrayTemplate.h"
+#include "vtkArrayDispatch.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkObject.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+using asmcore::Index;
+using asmcore::SimplifyResult;
+
+// Mean of each component over the finite member values, written to dst
+// (renormalised for normals). `get(member, component)` reads a value.
+// Returns false when the mean of a normal is zero (caller keeps the
+// representative's normal).
+template <typename Get>
+bool ClusterMean(const SimplifyResult& result, const asmcore::Sample& sample, int components,
+  bool renormalise, Get&& get, double* sum, Index* count)
+{
+  std::fill(sum, sum + components, 0.0);
+  std::fill(count, count + components, Index(0));
+  const Index* members = result.Members.data() + sample.MemberBegin;
+  // The members that place the sample (its cluster proper), so the values
+  // belong to the sample's position.
+  const Index core = sample.CoreSize > 0 ? sample.CoreSize : sample.ClusterSize;
+  if (core <= 0)
+  {
+    return false; // an empty cluster: the representative's values
+  }
+  for (Index m = 0; m < core; ++m)
+  {
+    const Index id = members[m];
+    for (int c = 0; c < components; ++c)
+    {
+      const double v = get(id, c);
+      if (std::isfinite(v))
+      {
+        sum[c] += v;
+        ++count[c];
+      }
+    }
+  }
+  double norm = 0.0;
+  for (int c = 0; c < components; ++c)
+  {
+    sum[c] = count[c] > 0 ? sum[c] / static_cast<double>(count[c])
+                          : std::numeric_limits<double>::quiet_NaN();
+    norm += sum[c] * sum[c];
+  }
+  if (renormalise)
+  {
+    norm = std::sqrt(norm);
+    if (!(norm > 0.0) || !std::isfinite(norm))
+    {
+      return false;
+    }
+    for (int c = 0; c < components; ++c)
+    {
+      sum[c] /= norm;
+    }
+  }
+  return true;
+}
+
+// Floating-point arrays: cluster means. AOS arrays read and write raw memory.
+struct MeanWorker
+{
+  template <typename ArrayT>
+  void operator()(ArrayT* in, vtkDataArray* outBase, const SimplifyResult& result,
+    bool renormalise, bool parallel) const
+  {
+    auto* out = static_cast<ArrayT*>(outBase);
+    using T = vtk::GetAPIType<ArrayT>;
+    const int nc = in->GetNumberOfComponents();
+    const auto count = static_cast<vtkIdType>(result.Samples.size());
+    auto body = [&](vtkIdType begin, vtkIdType end) {
+      std::vector<double> sum(static_cast<std::size_t>(nc));
+      std::vector<Index> n(static_cast<std::size_t>(nc));
+      const auto inTuples = vtk::DataArrayTupleRange(in);
+      auto outTuples = vtk::DataArrayTupleRange(out);
+      for (vtkIdType s = begin; s < end; ++s)
+      {
+        const asmcore::Sample& sample = result.Samples[s];
+        auto dst = outTuples[s];
+        const bool ok = ClusterMean(result, sample, nc, renormalise,
+          [&](Index id, int c) { return static_cast<double>(inTuples[id][c]); }, sum.data(),
+          n.data());
+        if (!ok)
+        {
+          const auto src = inTuples[sample.Representative];
+          std::copy(src.begin(), src.end(), dst.begin());
+          continue;
+        }
+        for (int c = 0; c < nc; ++c)
+        {
+          dst[c] = static_cast<T>(sum[c]);
+        }
+      }
+    };
+    if (parallel)
+    {
+      vtkSMPTools::For(0, count, body);
+    }
+    else
+    {
+      body(0, count);
+    }
+  }
+
+  // The common case, with raw pointers; 1 and 3 components (scalars,
+  // vectors, normals) with a compile-time count.
+  template <typename T>
+  void operator()(vtkAOSDataArrayTemplate<T>* in, vtkDataArray* outBase,
+    const SimplifyResult& result, bool renormalise, bool) const
+  {
+    auto* out = static_cast<vtkAOSDataArrayTemplate<T>*>(outBase);
+    switch (in->GetNumberOfComponents())
+    {
+      case 1:
+        MeanAOS<1>(in->GetPointer(0), out->GetPointer(0), 1, result, renormalise);
+        break;
+      case 3:
+        MeanAOS<3>(in->GetPointer(0), out->GetPointer(0), 3, result, renormalise);
+        break;
+      default:
+        MeanAOS<0>(in->GetPointer(0), out->GetPointer(0), in->GetNumberOfComponents(), result,
+          renormalise);
+    }
+  }
+
+  template <int NC, typename T>
+  static void MeanAOS(
+    const T* src, T* dst, int dynamicComponents, const SimplifyResult& result, bool renormalise)
+  {
+    const int nc = NC > 0 ? NC : dynamicComponents;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(result.Samples.size()),
+      [&](vtkIdType begin, vtkIdType end) {
+        std::vector<double> sum(static_cast<std::size_t>(nc));
+        std::vector<Index> n(static_cast<std::size_t>(nc));
+        for (vtkIdType s = begin; s < end; ++s)
+        {
+          const asmcore::Sample& sample = result.Samples[s];
+          T* d = dst + s * nc;
+          const bool ok = ClusterMean(result, sample, nc, renormalise,
+            [&](Index id, int c) { return static_cast<double>(src[id * nc + c]); }, sum.data(),
+            n.data());
+          if (!ok)
+          {
+            std::copy(src + sample.Representative * nc, src + (sample.Representative + 1) * nc, d);
+            continue;
+          }
+          for (int c = 0; c < nc; ++c)
+          {
+            d[c] = static_cast<T>(sum[c]);
+          }
+        }
+      });
+  }
+};
+
+// Any AOS array: the representatives' tuples, copied as bytes.
+void CopyRepresentativesAOS(
+  vtkDataArray* in, vtkDataArray* out, const std::vector<vtkIdType>& representatives)
+{
+  const std::size_t bytes =
+    static_cast<std::size_t>(in->GetDataTypeSize()) * static_cast<std::size_t>(in->GetNumberOfComponents());
+  const auto* src = static_cast<const unsigned char*>(in->GetVoidPointer(0));
+  auto* dst = static_cast<unsigned char*>(out->GetVoidPointer(0));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(representatives.size()),
+    [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType s = begin; s < end; ++s)
+      {
+        std::memcpy(dst + static_cast<std::size_t>(s) * bytes,
+          src + static_cast<std::size_t>(representatives[s]) * bytes, bytes);
+      }
+    });
+}
+
+bool IsAOS(vtkAbstractArray* a)
+{
+  return a->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
+    a->GetDataType() != VTK_BIT && vtkDataArray::SafeDownCast(a) != nullptr;
+}
+} // namespace
+
+namespace asmvtk
+{
+int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyResult& result,
+  bool snap, Index numberOfPoints, vtkObject* reporter)
+{
+  const auto count = static_cast<vtkIdType>(result.Samples.size());
+  std::vector<vtkIdType> representatives(static_cast<std::size_t>(count));
+  for (vtkIdType s = 0; s < count; ++s)
+  {
+    representatives[s] = result.Samples[s].Representative;
+  }
+  vtkNew<vtkIdList> representativeList;
+  int dropped = 0;
+  for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* in = inPD->GetAbstractArray(i);
+    if (!in || in->GetNumberOfTuples() < numberOfPoints || in->GetNumberOfComponents() < 1)
+    {
+      vtkWarningWithObjectMacro(reporter, << "Point-data array "
+                                          << (in && in->GetName() ? in->GetName() : "(unnamed)")
+                                          << " has " << (in ? in->GetNumberOfTuples() : 0)
+                                          << " tuples for " << numberOfPoints
+                                          << " points: not carried to the output.");
+      ++dropped;
+      continue;
+    }
+    vtkSmartPointer<vtkAbstractArray> out = vtk::TakeSmartPointer(in->NewInstance());
+    out->SetName(in->GetName());
+    out->SetNumberOfComponents(in->GetNumberOfComponents());
+    out->CopyComponentNames(in);
+    out->SetNumberOfTuples(count);
+    auto* inData = vtkDataArray::SafeDownCast(in);
+    auto* outData = vtkDataArray::SafeDownCast(out);
+    const int type = in->GetDataType();
+    const bool floating = inData && (type == VTK_FLOAT || type == VTK_DOUBLE);
+    if (floating && !snap)
+    {
+      const bool renormalise = inData == inPD->GetNormals() && in->GetNumberOfComponents() == 3;
+      MeanWorker worker;
+      using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+      if (!Reals::Execute(inData, worker, outData, result, renormalise, true))
+      {
+        worker(inData, outData, result, renormalise, false); // generic API, one thread
+      }
+    }
+    else if (IsAOS(in) && IsAOS(out))
+    {
+      CopyRepresentativesAOS(inData, outData, representatives);
+    }
+    else
+    {
+      // Bit, string, variant and other array layouts: the generic API.
+      if (representativeList->GetNumberOfIds() != count)
+      {
+        representativeList->SetNumberOfIds(count);
+        std::copy(representatives.begin(), representatives.end(), representativeList->begin());
+      }
+      in->GetTuples(representativeList, out);
+    }
+    const int index = outPD->AddArray(out);
+    for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)
+    {
+      if (inPD->GetAbstractAttribute(attribute) == in)
+      {
+        outPD->SetActiveAttribute(index, attribute);
+      }
+    }
+  }
+  return dropped;
+}
+} // namespace asmvtk

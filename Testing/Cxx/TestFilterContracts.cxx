@@ -1,0 +1,279 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Pipeline contracts of both filters: the inputs are left unmodified, and
+// re-executing with changed parameters gives what a fresh filter gives.
+#include "FilterHelpers.h"
+
+#include "vtkASMSimplify.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkKeyPointError.h"
+#include "vtkPointData.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <string>
+
+using asmtest::Cloud;
+using asmtest::ToPolyData;
+
+namespace
+{
+// Content of an array as strings (exact, whatever the type).
+void ExpectSameArray(vtkAbstractArray* a, vtkAbstractArray* b, const std::string& what)
+{
+  ASSERT_NE(a, nullptr) << what;
+  ASSERT_NE(b, nullptr) << what;
+  EXPECT_STREQ(a->GetClassName(), b->GetClassName()) << what;
+  ASSERT_EQ(a->GetNumberOfComponents(), b->GetNumberOfComponents()) << what;
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples()) << what;
+  auto* da = vtkDataArray::SafeDownCast(a);
+  auto* db = vtkDataArray::SafeDownCast(b);
+  const vtkIdType values = a->GetNumberOfValues();
+  for (vtkIdType v = 0; v < values; ++v)
+  {
+    if (da && db)
+    {
+      const double x = da->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
+      const double y = db->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
+      ASSERT_TRUE(std::memcmp(&x, &y, sizeof(double)) == 0) << what << " value " << v;
+    }
+    else
+    {
+      ASSERT_EQ(a->GetVariantValue(v).ToString(), b->GetVariantValue(v).ToString()) << what << " value " << v;
+    }
+  }
+}
+
+void ExpectSameFields(vtkFieldData* a, vtkFieldData* b, const std::string& what)
+{
+  ASSERT_EQ(a->GetNumberOfArrays(), b->GetNumberOfArrays()) << what;
+  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* x = a->GetAbstractArray(i);
+    const std::string name = x->GetName() ? x->GetName() : "";
+    vtkAbstractArray* y = x->GetName() ? b->GetAbstractArray(x->GetName()) : b->GetAbstractArray(i);
+    ExpectSameArray(x, y, what + " " + name);
+  }
+}
+
+// Points, point data (with attribute roles), field data and vertices.
+void ExpectSameData(vtkPointSet* a, vtkPointSet* b, const std::string& what)
+{
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints()) << what;
+  if (a->GetNumberOfPoints() > 0)
+  {
+    ExpectSameArray(a->GetPoints()->GetData(), b->GetPoints()->GetData(), what + " points");
+  }
+  ExpectSameFields(a->GetPointData(), b->GetPointData(), what + " point data");
+  for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)
+  {
+    vtkAbstractArray* x = a->GetPointData()->GetAbstractAttribute(attribute);
+    vtkAbstractArray* y = b->GetPointData()->GetAbstractAttribute(attribute);
+    ASSERT_EQ(x == nullptr, y == nullptr) << what << " attribute " << attribute;
+    if (x && x->GetName())
+    {
+      EXPECT_STREQ(x->GetName(), y->GetName()) << what << " attribute " << attribute;
+    }
+  }
+  ExpectSameFields(a->GetFieldData(), b->GetFieldData(), what + " field data");
+  ASSERT_EQ(a->GetNumberOfCells(), b->GetNumberOfCells()) << what;
+}
+
+// A cloud with attributes of several kinds, normals and field data.
+vtkSmartPointer<vtkPolyData> RichCloud(unsigned seed)
+{
+  const Cloud c = asmtest::Sphere(3000, 1.0, seed);
+  auto input = ToPolyData(c, VTK_FLOAT);
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("RGB");
+  rgb->SetNumberOfComponents(3);
+  vtkNew<vtkIntArray> label;
+  label->SetName("Label");
+  vtkNew<vtkStringArray> name;
+  name->SetName("Name");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    normals->InsertNextTuple(c.data() + 3 * i);
+    rgb->InsertNextTuple3(i % 256, (i * 3) % 256, 7);
+    label->InsertNextValue(static_cast<int>(i % 5));
+    name->InsertNextValue(std::to_string(i));
+  }
+  input->GetPointData()->SetNormals(normals);
+  input->GetPointData()->SetScalars(rgb);
+  input->GetPointData()->AddArray(label);
+  input->GetPointData()->AddArray(name);
+  vtkNew<vtkStringArray> site;
+  site->SetName("Site");
+  site->InsertNextValue("lab");
+  input->GetFieldData()->AddArray(site);
+  return input;
+}
+
+using Setter = std::function<void(vtkASMSimplify*)>;
+
+const std::vector<std::pair<std::string, Setter>>& Variants()
+{
+  static const std::vector<std::pair<std::string, Setter>> variants = {
+    { "defaults", [](vtkASMSimplify*) {} },
+    { "count", [](vtkASMSimplify* f) {
+        f->SetTargetModeToNumberOfOutputPoints();
+        f->SetNumberOfOutputPoints(333);
+      } },
+    { "snap+tolerance", [](vtkASMSimplify* f) {
+        f->SetSnapToInputPoints(true);
+        f->SetErrorTolerance(0.01);
+      } },
+    { "cell+alpha+seed", [](vtkASMSimplify* f) {
+        f->SetCellSize(0.3);
+        f->SetAlpha(0.3);
+        f->SetRandomSeed(9);
+      } },
+    { "weight+double+nocurvature", [](vtkASMSimplify* f) {
+        f->SetWeightMode(vtkASMSimplify::SURFACE_VARIATION_WEIGHT);
+        f->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+        f->SetGenerateCurvature(false);
+        f->SetOutputFraction(0.2);
+      } },
+  };
+  return variants;
+}
+} // namespace
+
+TEST(FilterContracts, ASMSimplifyLeavesItsInputUnmodified)
+{
+  for (const auto& variant : Variants())
+  {
+    auto input = RichCloud(3);
+    vtkNew<vtkPolyData> copy;
+    copy->DeepCopy(input);
+    vtkNew<vtkASMSimplify> filter;
+    variant.second(filter);
+    filter->SetInputData(input);
+    filter->Update();
+    ASSERT_GT(filter->GetOutput()->GetNumberOfPoints(), 0) << variant.first;
+    ExpectSameData(input, copy, "input after " + variant.first);
+    // Changing the output does not reach the input either.
+    filter->GetOutput()->GetPointData()->GetArray("Label")->SetComponent(0, 0, -5);
+    ExpectSameData(input, copy, "input after editing the output, " + variant.first);
+  }
+}
+
+TEST(FilterContracts, KeyPointErrorLeavesItsInputsUnmodified)
+{
+  auto original = RichCloud(3);
+  vtkNew<vtkASMSimplify> simplify;
+  simplify->SetInputData(original);
+  simplify->Update();
+  vtkNew<vtkPolyData> simplified;
+  simplified->DeepCopy(simplify->GetOutput());
+  vtkNew<vtkPolyData> originalCopy, simplifiedCopy;
+  originalCopy->DeepCopy(original);
+  simplifiedCopy->DeepCopy(simplified);
+  vtkNew<vtkKeyPointError> error;
+  error->SetInputData(0, original);
+  error->SetInputData(1, simplified);
+  error->Update();
+  ASSERT_EQ(error->GetOutput(0)->GetNumberOfPoints(), simplified->GetNumberOfPoints());
+  ExpectSameData(original, originalCopy, "original");
+  ExpectSameData(simplified, simplifiedCopy, "simplified");
+  // The output's new arrays are its own.
+  EXPECT_EQ(simplified->GetPointData()->GetArray("Error"), nullptr);
+  EXPECT_EQ(simplified->GetFieldData()->GetArray("HausdorffDistance"), nullptr);
+}
+
+TEST(FilterContracts, ReExecutionEqualsAFreshRun)
+{
+  auto input = RichCloud(5);
+  const auto& variants = Variants();
+  for (std::size_t a = 0; a < variants.size(); ++a)
+  {
+    const std::size_t b = (a + 1) % variants.size();
+    // Run with A, then change to B and run again...
+    vtkNew<vtkASMSimplify> reused;
+    variants[a].second(reused);
+    reused->SetInputData(input);
+    reused->Update();
+    vtkNew<vtkASMSimplify> defaults; // back to the defaults, then B
+    reused->SetTargetMode(defaults->GetTargetMode());
+    reused->SetOutputFraction(defaults->GetOutputFraction());
+    reused->SetNumberOfOutputPoints(defaults->GetNumberOfOutputPoints());
+    reused->SetSnapToInputPoints(defaults->GetSnapToInputPoints());
+    reused->SetErrorTolerance(defaults->GetErrorTolerance());
+    reused->SetCellSize(defaults->GetCellSize());
+    reused->SetAlpha(defaults->GetAlpha());
+    reused->SetRandomSeed(defaults->GetRandomSeed());
+    reused->SetWeightMode(defaults->GetWeightMode());
+    reused->SetOutputPointsPrecision(defaults->GetOutputPointsPrecision());
+    reused->SetGenerateCurvature(defaults->GetGenerateCurvature());
+    variants[b].second(reused);
+    reused->Update();
+    // ... and compare with a fresh filter run with B only.
+    vtkNew<vtkASMSimplify> fresh;
+    variants[b].second(fresh);
+    fresh->SetInputData(input);
+    fresh->Update();
+    ExpectSameData(reused->GetOutput(), fresh->GetOutput(),
+      variants[a].first + " then " + variants[b].first);
+  }
+  // A modified input (same object) re-executes too.
+  vtkNew<vtkASMSimplify> filter;
+  filter->SetInputData(input);
+  filter->Update();
+  double before[3];
+  filter->GetOutput()->GetPoint(0, before);
+  input->DeepCopy(RichCloud(6));
+  input->Modified();
+  filter->Update();
+  double after[3];
+  filter->GetOutput()->GetPoint(0, after);
+  EXPECT_NE(before[0], after[0]);
+  vtkNew<vtkASMSimplify> fresh;
+  fresh->SetInputData(input);
+  fresh->Update();
+  ExpectSameData(filter->GetOutput(), fresh->GetOutput(), "after modifying the input");
+}
+
+TEST(FilterContracts, KeyPointErrorReExecutionEqualsAFreshRun)
+{
+  auto original = RichCloud(7);
+  vtkNew<vtkASMSimplify> simplify;
+  simplify->SetInputData(original);
+  simplify->Update();
+  vtkPolyData* simplified = simplify->GetOutput();
+
+  vtkNew<vtkKeyPointError> reused;
+  reused->SetInputData(0, original);
+  reused->SetInputData(1, simplified);
+  reused->Update();
+  reused->SetAlpha(0.3);
+  reused->SetCellSize(0.25);
+  reused->SetDistanceMeasure(vtkKeyPointError::SQUARED_DISTANCE);
+  reused->SetPlaneNeighbors(5);
+  reused->Update();
+
+  vtkNew<vtkKeyPointError> fresh;
+  fresh->SetInputData(0, original);
+  fresh->SetInputData(1, simplified);
+  fresh->SetAlpha(0.3);
+  fresh->SetCellSize(0.25);
+  fresh->SetDistanceMeasure(vtkKeyPointError::SQUARED_DISTANCE);
+  fresh->SetPlaneNeighbors(5);
+  fresh->Update();
+  ExpectSameData(reused->GetOutput(0), fresh->GetOutput(0), "port 0");
+  vtkTable* x = vtkTable::SafeDownCast(reused->GetOutputDataObject(1));
+  vtkTable* y = vtkTable::SafeDownCast(fresh->GetOutputDataObject(1));
+  ASSERT_NE(x, nullptr);
+  ASSERT_NE(y, nullptr);
+  ExpectSameFields(x->GetRowData(), y->GetRowData(), "table");
+}

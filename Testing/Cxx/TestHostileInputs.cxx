@@ -1,0 +1,407 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Messy scan data (README "Messy data"): NaN holes, exact duplicates,
+// georeferenced float coordinates, far outliers, one very dense cell, 64-bit
+// ids, extremely anisotropic bounds. Each gives exactly N_s sensible points.
+#include "FilterHelpers.h"
+
+#include "Core/Simplify.h"
+#include "vtkASMSimplify.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkKeyPointError.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <set>
+#include <type_traits>
+
+using asmtest::Cloud;
+using asmtest::FieldValue;
+using asmtest::FilterRun;
+using asmtest::ToPolyData;
+
+namespace
+{
+void ExpectAllFinite(vtkPolyData* out)
+{
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) << i;
+  }
+}
+
+// Largest | |p - centre| - radius | over the output points (with KeyPoint ==
+// 1 only when keysOnly).
+double SphereDeviation(vtkPolyData* out, const double centre[3], double radius, bool keysOnly)
+{
+  auto* keys = out->GetPointData()->GetArray("KeyPoint");
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    if (keysOnly && keys->GetTuple1(i) != 1.0)
+    {
+      continue;
+    }
+    double p[3];
+    out->GetPoint(i, p);
+    const double r = std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    worst = std::max(worst, std::abs(r - radius));
+  }
+  return worst;
+}
+} // namespace
+
+TEST(HostileInputs, NaNAndInfinitePointsAreSkippedWarnedAndCounted)
+{
+  // A depth camera's holes: 20 % of the points NaN or infinite, in any
+  // coordinate, with attributes on every point.
+  Cloud c = asmtest::Sphere(5000, 1.0, 11);
+  const double bad[] = { std::nan(""), std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity() };
+  for (int i = 0; i < 5000; i += 5)
+  {
+    c[3 * i + (i / 5) % 3] = bad[(i / 15) % 3];
+  }
+  auto input = ToPolyData(c, VTK_FLOAT);
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  for (int i = 0; i < 5000; ++i)
+  {
+    intensity->InsertNextValue(static_cast<float>(i % 100));
+  }
+  input->GetPointData()->AddArray(intensity);
+
+  FilterRun run;
+  run.Count(400);
+  vtkPolyData* out = run.Execute(input);
+  ASSERT_EQ(out->GetNumberOfPoints(), 400);
+  ExpectAllFinite(out);
+  EXPECT_EQ(FieldValue(out, "NumberOfSkippedPoints"), 1000.0);
+  EXPECT_GE(run.Messages->Warnings, 1);
+  EXPECT_EQ(run.Messages->Errors, 0);
+  auto* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
+  auto* outIntensity = out->GetPointData()->GetArray("Intensity");
+  ASSERT_NE(outIntensity, nullptr);
+  for (vtkIdType i = 0; i < 400; ++i)
+  {
+    const auto id = static_cast<vtkIdType>(ids->GetTuple1(i));
+    EXPECT_NE(id % 5, 0) << "a skipped point never represents a sample";
+    EXPECT_TRUE(std::isfinite(outIntensity->GetTuple1(i)));
+  }
+
+  // The fraction is taken of the finite points.
+  FilterRun fraction;
+  fraction.Filter->SetOutputFraction(0.1);
+  EXPECT_EQ(fraction.Execute(input)->GetNumberOfPoints(), 400);
+
+  // vtkKeyPointError skips them too (their Error is NaN).
+  asmtest::ObservedFilter<vtkKeyPointError> error;
+  error.Filter->SetInputData(0, input);
+  error.Filter->SetInputData(1, input);
+  error.Filter->SetGenerateCurvature(false);
+  error.Filter->Update();
+  EXPECT_EQ(error.Messages->Errors, 0);
+  EXPECT_GE(error.Messages->Warnings, 1);
+  EXPECT_EQ(FieldValue(error.Filter->GetOutput(), "HausdorffDistance"), 0.0);
+}
+
+TEST(HostileInputs, HalfOfThePointsExactDuplicates)
+{
+  // Every point scanned twice (merged scans): 50 % exact duplicates.
+  const Cloud unique = asmtest::Sphere(10000, 1.0, 5);
+  Cloud c = unique;
+  c.insert(c.end(), unique.begin(), unique.end());
+  const double centre[3] = { 0, 0, 0 };
+  for (bool snap : { false, true })
+  {
+    FilterRun run;
+    run.Count(500);
+    run.Filter->SetSnapToInputPoints(snap);
+    vtkPolyData* out = run.Execute(ToPolyData(c));
+    ASSERT_EQ(out->GetNumberOfPoints(), 500);
+    ExpectAllFinite(out);
+    auto* sizes = out->GetPointData()->GetArray("ClusterSize");
+    double total = 0.0;
+    std::set<std::vector<double>> distinct;
+    for (vtkIdType i = 0; i < 500; ++i)
+    {
+      total += sizes->GetTuple1(i);
+      double p[3];
+      out->GetPoint(i, p);
+      distinct.insert({ p[0], p[1], p[2] });
+    }
+    EXPECT_EQ(total, 20000.0) << "every input point is in exactly one cluster";
+    EXPECT_EQ(distinct.size(), 500u) << "no sample is spent twice on one position";
+    EXPECT_LT(SphereDeviation(out, centre, 1.0, false), 0.05);
+  }
+}
+
+TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
+{
+  // A 500 m sphere 1e7 m from the origin, in float (UTM-like): coordinates
+  // are rounded to 1 m there. The result must be as sensible as at the
+  // origin: exact count, points and key points on the surface (within the
+  // input's rounding), key points still found, no loss of precision beyond
+  // the input's own.
+  const double radius = 500.0;
+  const double far[3] = { 1.0e7, 1.0e7, 100.0 };
+  const double origin[3] = { 0, 0, 0 };
+  const Cloud atOrigin = asmtest::Sphere(50000, radius, 21);
+  Cloud shifted = atOrigin;
+  for (std::size_t i = 0; i < shifted.size(); ++i)
+  {
+    shifted[i] += far[i % 3];
+  }
+  FilterRun reference;
+  reference.Count(1000);
+  vtkPolyData* ref = reference.Execute(ToPolyData(atOrigin, VTK_FLOAT));
+  const double referenceKeys = FieldValue(ref, "NumberOfKeyPoints");
+
+  FilterRun run;
+  run.Count(1000);
+  vtkPolyData* out = run.Execute(ToPolyData(shifted, VTK_FLOAT));
+  ASSERT_EQ(out->GetNumberOfPoints(), 1000);
+  ExpectAllFinite(out);
+  EXPECT_EQ(out->GetPoints()->GetDataType(), VTK_FLOAT);
+  // The centroids' sagitta at the origin; far away, + 1 m input rounding
+  // + 1 m output rounding.
+  const double sagitta = SphereDeviation(ref, origin, radius, false);
+  EXPECT_LT(sagitta, 5.0);
+  EXPECT_LT(SphereDeviation(out, far, radius, false), sagitta + 2.0);
+  EXPECT_LT(SphereDeviation(out, far, radius, true), sagitta + 2.0);
+  EXPECT_GT(FieldValue(out, "NumberOfKeyPoints"), 0.5 * referenceKeys);
+  EXPECT_LT(FieldValue(out, "MKPE"), 0.1 * radius);
+  EXPECT_NEAR(FieldValue(out, "CellSize"), FieldValue(ref, "CellSize"),
+    0.25 * FieldValue(ref, "CellSize"));
+
+  // Double output points keep the computed positions (no float rounding).
+  FilterRun precise;
+  precise.Count(1000);
+  precise.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  vtkPolyData* fine = precise.Execute(ToPolyData(shifted, VTK_FLOAT));
+  EXPECT_EQ(fine->GetPoints()->GetDataType(), VTK_DOUBLE);
+  EXPECT_LT(SphereDeviation(fine, far, radius, false), sagitta + 1.0);
+}
+
+TEST(HostileInputs, OnePercentFarOutliers)
+{
+  // 1 % of the points scattered up to 1 km from a 1 m sphere: the sphere
+  // must still get nearly all of the samples, and the automatic cell size
+  // must follow the sphere, not the outliers' bounding box.
+  Cloud c = asmtest::Sphere(20000, 1.0, 8);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1000.0, 1000.0);
+  for (int i = 0; i < 200; ++i)
+  {
+    asmtest::Add(c, u(rng), u(rng), u(rng));
+  }
+  FilterRun clean;
+  clean.Count(1000);
+  const double cleanCell = FieldValue(clean.Execute(ToPolyData(asmtest::Sphere(20000, 1.0, 8))), "CellSize");
+
+  FilterRun run;
+  run.Count(1000);
+  vtkPolyData* out = run.Execute(ToPolyData(c));
+  ASSERT_EQ(out->GetNumberOfPoints(), 1000);
+  ExpectAllFinite(out);
+  int onSphere = 0;
+  for (vtkIdType i = 0; i < 1000; ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    onSphere += std::abs(std::hypot(p[0], p[1], p[2]) - 1.0) < 0.05;
+  }
+  EXPECT_GE(onSphere, 960) << "outliers get about their share (1 %) of the samples";
+  EXPECT_LT(FieldValue(out, "CellSize"), 2.0 * cleanCell);
+}
+
+TEST(HostileInputs, FiveMillionPointsInOneCell)
+{
+  // One dense grid cell of 5 M points (a 1 mm blob in a 1 m cell): linear
+  // or n log n work only, no recursion depth growing with n.
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0.0, 1e-3);
+  const int n = 5000000;
+  Cloud c;
+  c.reserve(3 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+  {
+    asmtest::Add(c, u(rng), u(rng), 0.05 * u(rng) * u(rng) * 1e3);
+  }
+  FilterRun run;
+  run.Filter->SetCellSize(1.0);
+  run.Filter->SetGenerateCurvature(false);
+  run.Count(2000);
+  vtkPolyData* out = run.Execute(ToPolyData(c, VTK_FLOAT));
+  ASSERT_EQ(out->GetNumberOfPoints(), 2000);
+  ExpectAllFinite(out);
+  EXPECT_EQ(FieldValue(out, "CellSize"), 1.0);
+  double total = 0.0;
+  auto* sizes = out->GetPointData()->GetArray("ClusterSize");
+  for (vtkIdType i = 0; i < 2000; ++i)
+  {
+    total += sizes->GetTuple1(i);
+  }
+  EXPECT_EQ(total, static_cast<double>(n));
+}
+
+// Ids are 64-bit from the VTK arrays through the core and back.
+static_assert(sizeof(asmcore::Index) == 8 && std::is_signed<asmcore::Index>::value,
+  "asmcore::Index must be a signed 64-bit type");
+static_assert(sizeof(vtkIdType) == 8, "VTK must be built with 64-bit ids (VTK_USE_64BIT_IDS)");
+static_assert(std::is_same<decltype(asmcore::Sample::Representative), asmcore::Index>::value &&
+    std::is_same<decltype(asmcore::Sample::MemberBegin), asmcore::Index>::value &&
+    std::is_same<decltype(asmcore::Sample::ClusterSize), asmcore::Index>::value &&
+    std::is_same<decltype(asmcore::SimplifyParameters::NumberOfSamples), asmcore::Index>::value &&
+    std::is_same<std::vector<asmcore::Index>, decltype(asmcore::SimplifyResult::Members)>::value,
+  "the core's ids and counts are 64-bit");
+static_assert(std::is_same<decltype(std::declval<vtkASMSimplify&>().GetNumberOfOutputPoints()),
+                vtkIdType>::value,
+  "NumberOfOutputPoints is a vtkIdType");
+
+TEST(HostileInputs, PointIdsBeyondTwoToThe31)
+{
+  // The core sees point ids 2^31 + k without 2^31 points in memory: the
+  // coordinate pointer is based so that xyz + 3 * id lands in a small buffer.
+  const asmcore::Index first = (asmcore::Index(1) << 31) + 12345;
+  const Cloud c = asmtest::Sphere(3000, 1.0, 2);
+  const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(c.data()) -
+    static_cast<std::uintptr_t>(first) * 3 * sizeof(double);
+  const auto* xyz = reinterpret_cast<const double*>(base);
+  std::vector<asmcore::Index> ids;
+  for (asmcore::Index i = 0; i < 3000; ++i)
+  {
+    ids.push_back(first + i);
+  }
+  asmcore::SimplifyParameters parameters;
+  parameters.NumberOfSamples = 150;
+  parameters.Snap = true;
+  const asmcore::SimplifyResult r = asmcore::Simplify(xyz, ids, nullptr, parameters);
+  ASSERT_EQ(r.Samples.size(), 150u);
+  std::vector<char> seen(3000, 0);
+  for (asmcore::Index id : r.Members)
+  {
+    ASSERT_GE(id, first);
+    ASSERT_LT(id, first + 3000);
+    ASSERT_FALSE(seen[id - first]);
+    seen[id - first] = 1;
+  }
+  for (const asmcore::Sample& s : r.Samples)
+  {
+    ASSERT_GE(s.Representative, first);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(s.Position[a], c[3 * (s.Representative - first) + a]);
+    }
+  }
+
+  // The filter's id arrays are vtkIdTypeArray (64-bit).
+  FilterRun run;
+  run.Count(100);
+  vtkPolyData* out = run.Execute(ToPolyData(c));
+  EXPECT_NE(vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("vtkOriginalPointIds")), nullptr);
+  EXPECT_NE(vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("ClusterSize")), nullptr);
+}
+
+TEST(HostileInputs, OneKilometreByOneMillimetreStrip)
+{
+  // Extremely anisotropic bounds: 1 km x 1 mm (x 10 um of relief). Exact
+  // count, a grid following the long axis, points spread along the strip.
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Cloud c;
+  for (int i = 0; i < 100000; ++i)
+  {
+    const double x = 1000.0 * u(rng);
+    asmtest::Add(c, x, 1e-3 * u(rng), 1e-5 * std::sin(x));
+  }
+  for (bool snap : { false, true })
+  {
+    FilterRun run;
+    run.Count(5000);
+    run.Filter->SetSnapToInputPoints(snap);
+    vtkPolyData* out = run.Execute(ToPolyData(c));
+    ASSERT_EQ(out->GetNumberOfPoints(), 5000);
+    ExpectAllFinite(out);
+    const double cell = FieldValue(out, "CellSize");
+    EXPECT_GT(cell, 0.01) << "cells are not sized by the 1 mm side";
+    EXPECT_LT(cell, 100.0);
+    // Every 10 m of the strip gets samples.
+    std::vector<int> perBin(100, 0);
+    double bounds[6];
+    out->GetBounds(bounds);
+    EXPECT_GE(bounds[0], 0.0);
+    EXPECT_LE(bounds[1], 1000.0);
+    EXPECT_GE(bounds[2], 0.0);
+    EXPECT_LE(bounds[3], 1e-3);
+    for (vtkIdType i = 0; i < 5000; ++i)
+    {
+      double p[3];
+      out->GetPoint(i, p);
+      ++perBin[std::min(99, static_cast<int>(p[0] / 10.0))];
+    }
+    EXPECT_GT(*std::min_element(perBin.begin(), perBin.end()), 20);
+  }
+  // A cell size far below the short side is enlarged (2^21 cells per axis),
+  // with a warning, not a memory blow-up.
+  FilterRun tiny;
+  tiny.Count(5000);
+  tiny.Filter->SetCellSize(1e-9);
+  vtkPolyData* out = tiny.Execute(ToPolyData(c));
+  EXPECT_EQ(out->GetNumberOfPoints(), 5000);
+  EXPECT_GE(tiny.Messages->Warnings, 1);
+  EXPECT_GT(FieldValue(out, "CellSize"), 0.99 * 1000.0 / (1 << 21));
+}
+
+TEST(HostileInputs, ArraysShorterThanThePointsAreDroppedWithAWarning)
+{
+  // A malformed dataset: point-data arrays (normals included) with fewer
+  // tuples than points must not be read past their end.
+  auto input = ToPolyData(asmtest::Sphere(2000, 1.0, 9));
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(10);
+  normals->FillValue(1.0f);
+  input->GetPointData()->SetNormals(normals);
+  vtkNew<vtkUnsignedCharArray> flags;
+  flags->SetName("Flags");
+  flags->SetNumberOfTuples(1999);
+  flags->FillValue(1);
+  input->GetPointData()->AddArray(flags);
+  vtkNew<vtkFloatArray> good;
+  good->SetName("Good");
+  good->SetNumberOfTuples(2000);
+  good->FillValue(2.0f);
+  input->GetPointData()->AddArray(good);
+
+  FilterRun run;
+  run.Count(100);
+  vtkPolyData* out = run.Execute(input);
+  ASSERT_EQ(out->GetNumberOfPoints(), 100);
+  EXPECT_EQ(run.Messages->Warnings, 2);
+  EXPECT_EQ(out->GetPointData()->GetArray("Flags"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("Good"), nullptr);
+  EXPECT_EQ(out->GetPointData()->GetArray("Good")->GetTuple1(99), 2.0);
+  ASSERT_NE(out->GetPointData()->GetNormals(), nullptr) << "the PCA normals take their place";
+  EXPECT_EQ(out->GetPointData()->GetNormals()->GetNumberOfTuples(), 100);
+
+  // vtkKeyPointError with such a simplified cloud.
+  auto simplified = ToPolyData(asmtest::Sphere(100, 1.0, 10));
+  simplified->GetPointData()->SetNormals(normals);
+  vtkNew<vtkKeyPointError> error;
+  error->SetInputData(0, input);
+  error->SetInputData(1, simplified);
+  error->Update();
+  EXPECT_EQ(error->GetOutput(0)->GetNumberOfPoints(), 100);
+}

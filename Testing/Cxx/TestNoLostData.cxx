@@ -1,0 +1,332 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// No lost data: every point-data array type reaches the output of
+// vtkASMSimplify (and of vtkKeyPointError's port 0), floating arrays
+// averaged, integer and categorical arrays taken from the representative
+// point; vtkOriginalPointIds maps back to real input points; field data is
+// carried.
+#include "FilterHelpers.h"
+
+#include "Core/Simplify.h"
+#include "vtkBitArray.h"
+#include "vtkCharArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
+#include "vtkKeyPointError.h"
+#include "vtkLongArray.h"
+#include "vtkLongLongArray.h"
+#include "vtkPointData.h"
+#include "vtkShortArray.h"
+#include "vtkSignedCharArray.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
+#include "vtkUnsignedLongArray.h"
+#include "vtkUnsignedLongLongArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+using asmtest::Cloud;
+using asmtest::FieldValue;
+using asmtest::FilterRun;
+using asmtest::ToPolyData;
+
+namespace
+{
+// The integer value of component c of point i: distinct between
+// neighbours, within the range of every type (0 .. 99).
+double Label(vtkIdType i, int c)
+{
+  return static_cast<double>((i * 37 + c * 11) % 100);
+}
+
+template <typename ArrayT>
+vtkSmartPointer<ArrayT> LabelArray(const char* name, int components, vtkIdType n)
+{
+  auto a = vtkSmartPointer<ArrayT>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      a->SetComponent(i, c, Label(i, c));
+    }
+  }
+  return a;
+}
+
+// A sphere with one array of every type.
+vtkSmartPointer<vtkPolyData> CloudWithEveryArrayType(int pointType = VTK_DOUBLE)
+{
+  const Cloud c = asmtest::Sphere(4000, 1.0, 13);
+  auto input = ToPolyData(c, pointType);
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkPointData* pd = input->GetPointData();
+  pd->AddArray(LabelArray<vtkCharArray>("char", 1, n));
+  pd->AddArray(LabelArray<vtkSignedCharArray>("int8", 1, n));
+  pd->AddArray(LabelArray<vtkUnsignedCharArray>("uint8", 4, n)); // e.g. RGBA
+  pd->AddArray(LabelArray<vtkShortArray>("int16", 1, n));
+  pd->AddArray(LabelArray<vtkUnsignedShortArray>("uint16", 2, n));
+  pd->AddArray(LabelArray<vtkIntArray>("int32", 1, n));
+  pd->AddArray(LabelArray<vtkUnsignedIntArray>("uint32", 1, n));
+  pd->AddArray(LabelArray<vtkLongArray>("long", 1, n));
+  pd->AddArray(LabelArray<vtkUnsignedLongArray>("ulong", 1, n));
+  pd->AddArray(LabelArray<vtkLongLongArray>("int64", 3, n));
+  pd->AddArray(LabelArray<vtkUnsignedLongLongArray>("uint64", 1, n));
+  pd->AddArray(LabelArray<vtkIdTypeArray>("ids", 1, n));
+  pd->AddArray(LabelArray<vtkIntArray>(nullptr, 1, n)); // unnamed
+  auto bits = vtkSmartPointer<vtkBitArray>::New();
+  bits->SetName("bits");
+  bits->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    bits->SetValue(i, static_cast<int>(Label(i, 0)) % 2);
+  }
+  pd->AddArray(bits);
+  auto strings = vtkSmartPointer<vtkStringArray>::New();
+  strings->SetName("strings");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    strings->InsertNextValue("p" + std::to_string(i));
+  }
+  pd->AddArray(strings);
+  // Floating arrays: functions of the coordinates, so their means are known.
+  auto xyzD = vtkSmartPointer<vtkDoubleArray>::New();
+  xyzD->SetName("xyz64");
+  xyzD->SetNumberOfComponents(3);
+  auto xF = vtkSmartPointer<vtkFloatArray>::New();
+  xF->SetName("x32");
+  auto unnamedF = vtkSmartPointer<vtkFloatArray>::New();
+  unnamedF->SetNumberOfComponents(2);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    xyzD->InsertNextTuple(c.data() + 3 * i);
+    xF->InsertNextValue(static_cast<float>(c[3 * i]));
+    unnamedF->InsertNextTuple2(c[3 * i + 1], c[3 * i + 2]);
+  }
+  pd->AddArray(xyzD);
+  pd->AddArray(xF);
+  pd->AddArray(unnamedF);
+  pd->SetActiveScalars("int32");
+  return input;
+}
+
+const char* const IntegerArrays[] = { "char", "int8", "uint8", "int16", "uint16", "int32",
+  "uint32", "long", "ulong", "int64", "uint64", "ids" };
+} // namespace
+
+TEST(NoLostData, EveryArrayTypeIsCarried)
+{
+  for (bool snap : { false, true })
+  {
+    auto input = CloudWithEveryArrayType();
+    vtkPointData* inPD = input->GetPointData();
+    FilterRun run;
+    run.Count(300);
+    run.Filter->SetSnapToInputPoints(snap);
+    run.Filter->SetGenerateCurvature(false);
+    vtkPolyData* out = run.Execute(input);
+    ASSERT_EQ(out->GetNumberOfPoints(), 300);
+    vtkPointData* outPD = out->GetPointData();
+    auto* originalIds = vtkIdTypeArray::SafeDownCast(outPD->GetArray("vtkOriginalPointIds"));
+    ASSERT_NE(originalIds, nullptr);
+
+    // Same class, components and tuple count for every input array, named
+    // or not; the active scalars stay active.
+    int unnamedIn = 0, unnamedOut = 0;
+    for (int a = 0; a < inPD->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* in = inPD->GetAbstractArray(a);
+      if (!in->GetName())
+      {
+        ++unnamedIn;
+        continue;
+      }
+      vtkAbstractArray* o = outPD->GetAbstractArray(in->GetName());
+      ASSERT_NE(o, nullptr) << in->GetName();
+      EXPECT_STREQ(o->GetClassName(), in->GetClassName()) << in->GetName();
+      EXPECT_EQ(o->GetNumberOfComponents(), in->GetNumberOfComponents()) << in->GetName();
+      EXPECT_EQ(o->GetNumberOfTuples(), 300) << in->GetName();
+    }
+    for (int a = 0; a < outPD->GetNumberOfArrays(); ++a)
+    {
+      unnamedOut += outPD->GetAbstractArray(a)->GetName() == nullptr;
+    }
+    EXPECT_EQ(unnamedOut, unnamedIn);
+    ASSERT_NE(outPD->GetScalars(), nullptr);
+    EXPECT_STREQ(outPD->GetScalars()->GetName(), "int32");
+
+    for (vtkIdType s = 0; s < 300; ++s)
+    {
+      const vtkIdType id = originalIds->GetValue(s);
+      ASSERT_GE(id, 0);
+      ASSERT_LT(id, input->GetNumberOfPoints());
+      // Integer arrays: the representative's tuple, never an average.
+      for (const char* name : IntegerArrays)
+      {
+        vtkDataArray* o = outPD->GetArray(name);
+        for (int c = 0; c < o->GetNumberOfComponents(); ++c)
+        {
+          ASSERT_EQ(o->GetComponent(s, c), Label(id, c)) << name << " sample " << s;
+        }
+      }
+      EXPECT_EQ(outPD->GetArray("bits")->GetComponent(s, 0), static_cast<int>(Label(id, 0)) % 2);
+      EXPECT_EQ(vtkStringArray::SafeDownCast(outPD->GetAbstractArray("strings"))->GetValue(s),
+        "p" + std::to_string(id));
+      // Floating arrays: the cluster mean (= the position, for coordinates),
+      // or the snapped point's value.
+      double p[3], mean[3], in[3];
+      out->GetPoint(s, p);
+      outPD->GetArray("xyz64")->GetTuple(s, mean);
+      input->GetPoint(id, in);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_NEAR(mean[k], p[k], 1e-12);
+        if (snap)
+        {
+          EXPECT_EQ(p[k], in[k]) << "snapped points are the input point at vtkOriginalPointIds";
+        }
+      }
+      EXPECT_NEAR(outPD->GetArray("x32")->GetTuple1(s), p[0], 1e-6);
+    }
+  }
+}
+
+TEST(NoLostData, OriginalPointIdIsAClusterMember)
+{
+  // In the core: each sample's representative is one of its members, the
+  // one nearest the centroid.
+  const Cloud c = asmtest::Sphere(3000, 1.0, 4);
+  const std::vector<asmcore::Index> ids = asmtest::AllIds(c);
+  asmcore::SimplifyParameters parameters;
+  parameters.NumberOfSamples = 200;
+  const asmcore::SimplifyResult r = asmcore::Simplify(c.data(), ids, nullptr, parameters);
+  ASSERT_EQ(r.Samples.size(), 200u);
+  for (const asmcore::Sample& s : r.Samples)
+  {
+    const auto* first = r.Members.data() + s.MemberBegin;
+    const auto* last = first + s.ClusterSize;
+    ASSERT_NE(std::find(first, last, s.Representative), last);
+    const auto dist = [&](asmcore::Index id) {
+      return std::hypot(c[3 * id] - s.Position[0], c[3 * id + 1] - s.Position[1],
+        c[3 * id + 2] - s.Position[2]);
+    };
+    for (const auto* m = first; m != last; ++m)
+    {
+      EXPECT_LE(dist(s.Representative), dist(*m) + 1e-12);
+    }
+  }
+}
+
+TEST(NoLostData, FloatMeansIgnoreNaNValues)
+{
+  // A NaN attribute value (a missing reading) does not poison its cluster.
+  const Cloud c = asmtest::Sphere(2000, 1.0, 6);
+  auto input = ToPolyData(c);
+  vtkNew<vtkDoubleArray> reading;
+  reading->SetName("Reading");
+  for (vtkIdType i = 0; i < 2000; ++i)
+  {
+    reading->InsertNextValue(i % 3 == 0 ? std::nan("") : 5.0);
+  }
+  input->GetPointData()->AddArray(reading);
+  FilterRun run;
+  run.Count(100);
+  run.Filter->SetGenerateCurvature(false);
+  vtkPolyData* out = run.Execute(input);
+  vtkDataArray* o = out->GetPointData()->GetArray("Reading");
+  auto* sizes = out->GetPointData()->GetArray("ClusterSize");
+  for (vtkIdType s = 0; s < 100; ++s)
+  {
+    if (sizes->GetTuple1(s) >= 3)
+    {
+      EXPECT_EQ(o->GetTuple1(s), 5.0) << s;
+    }
+  }
+}
+
+TEST(NoLostData, FieldDataIsCarriedAndOurFiguresAdded)
+{
+  auto input = ToPolyData(asmtest::Sphere(2000, 1.0, 1));
+  vtkNew<vtkStringArray> site;
+  site->SetName("Site");
+  site->InsertNextValue("north quarry");
+  vtkNew<vtkIntArray> scanner;
+  scanner->SetName("ScannerId");
+  scanner->InsertNextValue(42);
+  vtkNew<vtkDoubleArray> stale;
+  stale->SetName("MKPE"); // e.g. from an earlier simplification
+  stale->InsertNextValue(-1.0);
+  input->GetFieldData()->AddArray(site);
+  input->GetFieldData()->AddArray(scanner);
+  input->GetFieldData()->AddArray(stale);
+
+  FilterRun run;
+  run.Count(100);
+  vtkPolyData* out = run.Execute(input);
+  vtkFieldData* fd = out->GetFieldData();
+  auto* outSite = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Site"));
+  ASSERT_NE(outSite, nullptr);
+  EXPECT_EQ(outSite->GetValue(0), "north quarry");
+  ASSERT_NE(fd->GetArray("ScannerId"), nullptr);
+  EXPECT_EQ(fd->GetArray("ScannerId")->GetTuple1(0), 42.0);
+  EXPECT_GE(FieldValue(out, "MKPE"), 0.0) << "our figure replaces the stale one";
+  EXPECT_EQ(FieldValue(out, "NumberOfSkippedPoints"), 0.0);
+  int mkpeArrays = 0;
+  for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+  {
+    mkpeArrays += std::string(fd->GetAbstractArray(a)->GetName()) == "MKPE";
+  }
+  EXPECT_EQ(mkpeArrays, 1);
+  EXPECT_EQ(input->GetFieldData()->GetArray("MKPE")->GetTuple1(0), -1.0) << "input untouched";
+}
+
+TEST(NoLostData, KeyPointErrorCarriesTheSimplifiedCloudsArrays)
+{
+  auto original = CloudWithEveryArrayType();
+  FilterRun run;
+  run.Count(300);
+  run.Filter->SetGenerateCurvature(false);
+  vtkPolyData* simplified = run.Execute(original);
+  vtkNew<vtkIntArray> tag;
+  tag->SetName("Tag");
+  tag->InsertNextValue(3);
+  simplified->GetFieldData()->AddArray(tag);
+
+  vtkNew<vtkKeyPointError> error;
+  error->SetInputData(0, original);
+  error->SetInputData(1, simplified);
+  error->SetGenerateCurvature(false);
+  error->Update();
+  vtkPolyData* out = error->GetOutput(0);
+  ASSERT_EQ(out->GetNumberOfPoints(), 300);
+  vtkPointData* inPD = simplified->GetPointData();
+  for (int a = 0; a < inPD->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* in = inPD->GetAbstractArray(a);
+    if (!in->GetName())
+    {
+      continue;
+    }
+    vtkAbstractArray* o = out->GetPointData()->GetAbstractArray(in->GetName());
+    ASSERT_NE(o, nullptr) << in->GetName();
+    EXPECT_STREQ(o->GetClassName(), in->GetClassName());
+    for (vtkIdType t = 0; t < 300; ++t)
+    {
+      ASSERT_EQ(o->GetVariantValue(t * o->GetNumberOfComponents()).ToString(),
+        in->GetVariantValue(t * in->GetNumberOfComponents()).ToString())
+        << in->GetName();
+    }
+  }
+  ASSERT_NE(out->GetFieldData()->GetArray("Tag"), nullptr);
+  EXPECT_GE(FieldValue(out, "MKPE"), 0.0);
+}
