@@ -82,7 +82,8 @@ def main():
 
     results = []
     for fraction in args.fractions:
-        asm = ASMSimplify(Input=reader, OutputFraction=fraction)  # noqa: F821 (from the plugin)
+        # The paper's pipeline read literally: its key points, as in the paper.
+        asm = ASMSimplify(Input=reader, OutputFraction=fraction, Mode="Paper")  # noqa: F821 (from the plugin)
         asm.UpdatePipeline()
         magnitude = Calculator(Input=asm, ResultArrayName="AbsMeanCurvature", Function="abs(MeanCurvature)")
         keys = Threshold(Input=asm, Scalars=["POINTS", "KeyPoint"])

@@ -12,11 +12,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-inline double Distance2(const double* a, const double* b)
-{
-  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return dx * dx + dy * dy + dz * dz;
-}
 
 } // namespace
 
@@ -59,7 +54,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
   auto lower = [&](const double* seed) {
     for (Index i = 0; i < n; ++i)
     {
-      scratch.Distance[i] = std::min(scratch.Distance[i], Distance2(xyz + 3 * points[i], seed));
+      scratch.Distance[i] = std::min(scratch.Distance[i], SquaredDistance(xyz + 3 * points[i], seed));
     }
   };
   for (Index s = 0; s < fixedCount; ++s)
@@ -76,7 +71,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
       double best = Infinity;
       for (Index i = 0; i < n; ++i)
       {
-        const double d = Distance2(xyz + 3 * points[i], centre);
+        const double d = SquaredDistance(xyz + 3 * points[i], centre);
         if (d < best)
         {
           best = d;
@@ -107,10 +102,10 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     {
       const double* p = xyz + 3 * points[i];
       Index best = 0;
-      double bestD = Distance2(p, pos);
+      double bestD = SquaredDistance(p, pos);
       for (Index s = 1; s < budget; ++s)
       {
-        const double d = Distance2(p, pos + 3 * s);
+        const double d = SquaredDistance(p, pos + 3 * s);
         if (d < bestD)
         {
           bestD = d;
@@ -159,7 +154,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
         double bestD = Infinity;
         for (Index s = first; s < last; ++s)
         {
-          const double d = Distance2(p, pos + 3 * s);
+          const double d = SquaredDistance(p, pos + 3 * s);
           if (d < bestD)
           {
             bestD = d;
@@ -222,7 +217,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
             break;
           }
           const Index s = candidate.second;
-          const double d = Distance2(p, pos + 3 * s);
+          const double d = SquaredDistance(p, pos + 3 * s);
           if (d < bestD || (d == bestD && s < best))
           {
             bestD = d;

@@ -22,6 +22,13 @@
 
 namespace asmcore
 {
+/// |a - b|^2 for two 3-vectors.
+inline double SquaredDistance(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
 /// The samples of a run, grouped by owner cell.
 struct VTKASMFILTERS_EXPORT SampleSet
 {
