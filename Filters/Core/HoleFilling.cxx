@@ -83,9 +83,26 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   }
   // Cost of removing candidate s, and who takes over its members.
   std::vector<Index> heirs;
+  // Bounded work: a sample among more than 4 * LargeCellBudget ring samples
+  // is not a candidate (moving one of many changes little anyway).
+  auto ringSampleCount = [&](Index cell) {
+    Index n = 0;
+    for (int r = 0; r < 27; ++r)
+    {
+      const Index nb = neighbors.Of(cell)[r];
+      n += nb < 0 ? 0 : samples.Start[nb + 1] - samples.Start[nb];
+    }
+    return n;
+  };
   auto removalCost = [&](Index s) {
     double cost = 0.0;
     heirs.clear();
+    const Index cell = static_cast<Index>(
+      std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
+    if (ringSampleCount(cell) > 4 * LargeCellBudget)
+    {
+      return Infinity;
+    }
     for (Index m = start[s]; m < start[s + 1]; ++m)
     {
       const Index slot = members[m];

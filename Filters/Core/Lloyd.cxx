@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Lloyd.h"
 
+#include "Neighbors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,7 +27,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     return;
   }
   double* pos = samples.Position.data() + 3 * firstSample;
-  if (iterations <= 0)
+  if (iterations <= 0 || budget > LargeCellBudget)
   {
     // Median splits of the other points in the (v0, v1) plane.
     scratch.Local.resize(static_cast<std::size_t>(n));
@@ -140,9 +142,32 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
+    std::vector<Index> ringSamples;
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c], last = samples.Start[c + 1];
+      if (last - first > LargeCellBudget)
+      {
+        // Many samples: a k-d tree of the ring's samples (ties: lower index).
+        ringSamples.clear();
+        for (int k = 0; k < 27; ++k)
+        {
+          const Index nb = neighbors.Of(c)[k];
+          for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+          {
+            ringSamples.push_back(s);
+          }
+        }
+        const Neighbors tree(pos, ringSamples);
+        for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+        {
+          const double* p = xyz + 3 * grid.Order[i];
+          const NearestPoint nearest = tree.Nearest(p);
+          assign[i] = nearest.Id;
+          distance2[i] = nearest.Id >= 0 ? SquaredDistance(p, pos + 3 * nearest.Id) : Infinity;
+        }
+        continue;
+      }
       // Pass 1: the nearest of the cell's own samples, and the farthest any
       // point of the cell is from it (the search radius for the others).
       double reach = 0.0;
