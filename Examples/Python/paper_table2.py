@@ -52,6 +52,7 @@ def measure(path, fraction, runs, curvature):
 
     asm = vtkASMSimplify()
     asm.SetInputData(original)
+    asm.SetModeToPaper()  # the paper's pipeline, as in its Table 2
     asm.SetTargetModeToOutputFraction()
     asm.SetOutputFraction(fraction)
     asm.SetGenerateCurvature(curvature)

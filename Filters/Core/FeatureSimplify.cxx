@@ -177,25 +177,9 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
 
   // 3. Budget: N_c ~ w_c * n_c^gamma, one per cell first when N_s allows.
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  std::vector<Index> capacity(static_cast<std::size_t>(cells));
-  double meanVariation = 0.0;
-  for (Index c = 0; c < cells; ++c)
-  {
-    capacity[c] = grid.CellSizeOf(c);
-    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
-  }
-  meanVariation /= static_cast<double>(total);
-  const double gamma = std::max(0.0, parameters.BudgetExponent);
-  for (Index c = 0; c < cells; ++c)
-  {
-    double weight = 1.0;
-    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
-    {
-      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
-    }
-    share[c] = weight * std::pow(static_cast<double>(capacity[c]), gamma);
-  }
+  std::vector<Index> capacity;
+  const std::vector<double> share =
+    CellShares(frames, grid, parameters, std::max(0.0, parameters.BudgetExponent), capacity);
   const std::vector<Index> budget =
     ApportionWithCoverage(share, capacity, target, parameters.CoverEveryCell);
 

@@ -12,11 +12,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-inline double Distance2(const double* a, const double* b)
-{
-  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return dx * dx + dy * dy + dz * dz;
-}
 
 Index CellOfSlot(const CellGrid& grid, Index slot)
 {
@@ -88,9 +83,26 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   }
   // Cost of removing candidate s, and who takes over its members.
   std::vector<Index> heirs;
+  // Bounded work: a sample among more than 4 * LargeCellBudget ring samples
+  // is not a candidate (moving one of many changes little anyway).
+  auto ringSampleCount = [&](Index cell) {
+    Index n = 0;
+    for (int r = 0; r < 27; ++r)
+    {
+      const Index nb = neighbors.Of(cell)[r];
+      n += nb < 0 ? 0 : samples.Start[nb + 1] - samples.Start[nb];
+    }
+    return n;
+  };
   auto removalCost = [&](Index s) {
     double cost = 0.0;
     heirs.clear();
+    const Index cell = static_cast<Index>(
+      std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
+    if (ringSampleCount(cell) > 4 * LargeCellBudget)
+    {
+      return Infinity;
+    }
     for (Index m = start[s]; m < start[s + 1]; ++m)
     {
       const Index slot = members[m];
@@ -103,7 +115,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
         const Index nb = ring[r];
         for (Index t = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && t < samples.Start[nb + 1]; ++t)
         {
-          const double d = Distance2(p, samples.Position.data() + 3 * t);
+          const double d = SquaredDistance(p, samples.Position.data() + 3 * t);
           if (t != s && d < best)
           {
             best = d;
@@ -155,7 +167,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
       {
-        separate = Distance2(p, xyz + 3 * grid.Order[gaps[g]]) > distance2[i];
+        separate = SquaredDistance(p, xyz + 3 * grid.Order[gaps[g]]) > distance2[i];
       }
     }
     if (separate)

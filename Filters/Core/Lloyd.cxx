@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Lloyd.h"
 
+#include "Neighbors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,11 +14,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-inline double Distance2(const double* a, const double* b)
-{
-  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return dx * dx + dy * dy + dz * dz;
-}
 
 } // namespace
 
@@ -30,7 +27,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     return;
   }
   double* pos = samples.Position.data() + 3 * firstSample;
-  if (iterations <= 0)
+  if (iterations <= 0 || budget > LargeCellBudget)
   {
     // Median splits of the other points in the (v0, v1) plane.
     scratch.Local.resize(static_cast<std::size_t>(n));
@@ -59,7 +56,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
   auto lower = [&](const double* seed) {
     for (Index i = 0; i < n; ++i)
     {
-      scratch.Distance[i] = std::min(scratch.Distance[i], Distance2(xyz + 3 * points[i], seed));
+      scratch.Distance[i] = std::min(scratch.Distance[i], SquaredDistance(xyz + 3 * points[i], seed));
     }
   };
   for (Index s = 0; s < fixedCount; ++s)
@@ -76,7 +73,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
       double best = Infinity;
       for (Index i = 0; i < n; ++i)
       {
-        const double d = Distance2(xyz + 3 * points[i], centre);
+        const double d = SquaredDistance(xyz + 3 * points[i], centre);
         if (d < best)
         {
           best = d;
@@ -107,10 +104,10 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     {
       const double* p = xyz + 3 * points[i];
       Index best = 0;
-      double bestD = Distance2(p, pos);
+      double bestD = SquaredDistance(p, pos);
       for (Index s = 1; s < budget; ++s)
       {
-        const double d = Distance2(p, pos + 3 * s);
+        const double d = SquaredDistance(p, pos + 3 * s);
         if (d < bestD)
         {
           bestD = d;
@@ -145,9 +142,32 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
+    std::vector<Index> ringSamples;
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c], last = samples.Start[c + 1];
+      if (last - first > LargeCellBudget)
+      {
+        // Many samples: a k-d tree of the ring's samples (ties: lower index).
+        ringSamples.clear();
+        for (int k = 0; k < 27; ++k)
+        {
+          const Index nb = neighbors.Of(c)[k];
+          for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+          {
+            ringSamples.push_back(s);
+          }
+        }
+        const Neighbors tree(pos, ringSamples);
+        for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+        {
+          const double* p = xyz + 3 * grid.Order[i];
+          const NearestPoint nearest = tree.Nearest(p);
+          assign[i] = nearest.Id;
+          distance2[i] = nearest.Id >= 0 ? SquaredDistance(p, pos + 3 * nearest.Id) : Infinity;
+        }
+        continue;
+      }
       // Pass 1: the nearest of the cell's own samples, and the farthest any
       // point of the cell is from it (the search radius for the others).
       double reach = 0.0;
@@ -159,7 +179,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
         double bestD = Infinity;
         for (Index s = first; s < last; ++s)
         {
-          const double d = Distance2(p, pos + 3 * s);
+          const double d = SquaredDistance(p, pos + 3 * s);
           if (d < bestD)
           {
             bestD = d;
@@ -222,7 +242,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
             break;
           }
           const Index s = candidate.second;
-          const double d = Distance2(p, pos + 3 * s);
+          const double d = SquaredDistance(p, pos + 3 * s);
           if (d < bestD || (d == bestD && s < best))
           {
             bestD = d;

@@ -22,6 +22,18 @@
 
 namespace asmcore
 {
+/// |a - b|^2 for two 3-vectors.
+inline double SquaredDistance(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// A cell owning more samples than this is handled with O(n log b) steps
+/// (median-split seeds, a k-d tree of the samples for the assignment)
+/// instead of O(n b) ones, which matters with a large explicit CellSize.
+constexpr Index LargeCellBudget = 64;
+
 /// The samples of a run, grouped by owner cell.
 struct VTKASMFILTERS_EXPORT SampleSet
 {
@@ -34,7 +46,7 @@ struct VTKASMFILTERS_EXPORT SampleSet
 /// Place the free samples of cell c (slots Start[c] + fixedCount .. Start[c+1];
 /// the fixed ones are already written) by farthest-point seeding from the
 /// fixed samples and `iterations` Lloyd iterations inside the cell. With
-/// iterations == 0, the free samples are instead the centroids of median
+/// iterations == 0 or budget > LargeCellBudget, the free samples are instead the centroids of median
 /// splits in the (v0, v1) plane of the cell's points other than `exclude`
 /// (the literal reading's middle clustering). Scratch vectors are reused.
 struct VTKASMFILTERS_EXPORT CellScratch

@@ -194,6 +194,32 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
+std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellGrid& grid,
+  const SimplifyParameters& parameters, double exponent, std::vector<Index>& capacity)
+{
+  const Index cells = grid.NumberOfCells();
+  std::vector<double> share(static_cast<std::size_t>(cells));
+  capacity.resize(static_cast<std::size_t>(cells));
+  double meanVariation = 0.0;
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
+  }
+  meanVariation /= static_cast<double>(grid.Order.size());
+  for (Index c = 0; c < cells; ++c)
+  {
+    double weight = 1.0;
+    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    {
+      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+    }
+    const auto n = static_cast<double>(capacity[c]);
+    share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));
+  }
+  return share;
+}
+
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
@@ -247,24 +273,8 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 3. Budgets (Eq. 4), exact in total.
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  std::vector<Index> capacity(static_cast<std::size_t>(cells));
-  double meanVariation = 0.0;
-  for (Index c = 0; c < cells; ++c)
-  {
-    capacity[c] = grid.CellSizeOf(c);
-    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
-  }
-  meanVariation /= static_cast<double>(total);
-  for (Index c = 0; c < cells; ++c)
-  {
-    double weight = 1.0;
-    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
-    {
-      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
-    }
-    share[c] = weight * static_cast<double>(capacity[c]);
-  }
+  std::vector<Index> capacity;
+  const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
   const std::vector<Index> budget = ApportionBudget(share, capacity, target);
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
   for (Index c = 0; c < cells; ++c)

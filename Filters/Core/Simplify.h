@@ -91,6 +91,16 @@ struct VTKASMFILTERS_EXPORT SimplifyResult
   bool Aborted = false;
 };
 
+struct CellFrame;
+struct CellGrid;
+
+/// Budget shares of Eq. 4: w_c * n_c^exponent per non-empty cell of `grid`
+/// (w_c from parameters.Weight and the mean surface variation of the
+/// cloud), and each cell's capacity n_c.
+VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>& frames,
+  const CellGrid& grid, const SimplifyParameters& parameters, double exponent,
+  std::vector<Index>& capacity);
+
 /// Simplify the points xyz[3*id], id in `ids` (finite points), to exactly
 /// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be null)
 /// orients the output normals; without it they point away from the cloud's
