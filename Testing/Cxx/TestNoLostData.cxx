@@ -131,6 +131,7 @@ TEST(NoLostData, EveryArrayTypeIsCarried)
     auto input = CloudWithEveryArrayType();
     vtkPointData* inPD = input->GetPointData();
     FilterRun run;
+    run.Filter->SetModeToPaper(); // samples are cluster centroids: array means = positions
     run.Count(300);
     run.Filter->SetSnapToInputPoints(snap);
     run.Filter->SetGenerateCurvature(false);
