@@ -10,6 +10,7 @@
 #include "vtkVoxelGrid.h"
 
 #include <array>
+#include <exception>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -21,6 +22,44 @@
 
 namespace asmbench
 {
+bool DivisionsFit(const std::array<int, 3>& d)
+{
+  return d[0] >= 1 && d[1] >= 1 && d[2] >= 1 &&
+    static_cast<double>(d[0]) * static_cast<double>(d[1]) * static_cast<double>(d[2]) <= MaxVoxelBins;
+}
+
+std::array<int, 3> VoxelDivisions(const double bounds[6], double s)
+{
+  double range[3], longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    range[k] = std::isfinite(bounds[2 * k + 1] - bounds[2 * k]) ? std::max(0.0, bounds[2 * k + 1] - bounds[2 * k]) : 0.0;
+    longest = std::max(longest, range[k]);
+  }
+  if (!(s > 0.0) || !std::isfinite(s))
+  {
+    s = std::isinf(s) ? longest + 1.0 : longest / std::cbrt(MaxVoxelBins); // +inf: one cell; NaN, <= 0: fine
+  }
+  s = std::max(s, 1e-12 * std::max(longest, 1e-300));
+  std::array<int, 3> d = { 1, 1, 1 };
+  for (int pass = 0; pass < 200; ++pass)
+  {
+    double bins = 1.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = static_cast<int>(std::max(1.0, std::min(1048576.0, std::round(range[k] / s))));
+      bins *= d[k];
+    }
+    if (DivisionsFit(d))
+    {
+      return d;
+    }
+    // Too many bins: grow the cell (at least 1 %: rounding can leave the product just above).
+    s *= std::max(1.01, std::cbrt(bins / MaxVoxelBins));
+  }
+  return { 1, 1, 1 };
+}
+
 namespace
 {
 // vtkASMSimplify gains a mode property in the quality work (issue 7). Until
@@ -194,8 +233,23 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
     {
       return known->second;
     }
+    // Never hand vtkVoxelGrid more bins than MaxBins: its locator and bin map
+    // allocate every bin (past 2^31 the sizes overflow: std::bad_array_new_length).
+    if (!DivisionsFit(d))
+    {
+      return counts[d] = 0;
+    }
     voxel->SetDivisions(d[0], d[1], d[2]);
-    counts[d] = RunFilter(voxel, false).Count;
+    try
+    {
+      counts[d] = RunFilter(voxel, false).Count;
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << " failed (" << e.what()
+                << "); configuration skipped\n";
+      counts[d] = 0;
+    }
     if (std::getenv("ASM_BENCHMARK_DEBUG"))
     {
       std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << ": " << counts[d] << "\n";
@@ -204,28 +258,7 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
   };
   double bounds[6];
   input->GetBounds(bounds);
-  // vtkVoxelGrid allocates memory for every bin, empty or not (a bin map and
-  // the locator's offsets, 16 bytes per bin): past MaxBins it cannot reach
-  // N_s on this machine, and gives the closest count below MaxBins.
-  constexpr double MaxBins = 268435456.0; // 2^28: about 4 GB
-  auto divisions = [&bounds](double s) {
-    std::array<int, 3> d;
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      double bins = 1.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        d[k] = static_cast<int>(std::max(1.0, std::min(1e6, std::round((bounds[2 * k + 1] - bounds[2 * k]) / s))));
-        bins *= d[k];
-      }
-      if (bins <= MaxBins)
-      {
-        break;
-      }
-      s *= std::cbrt(bins / MaxBins) * 1.001;
-    }
-    return d;
-  };
+  auto divisions = [&bounds](double s) { return VoxelDivisions(bounds, s); };
   vtkIdType found = 0;
   const double leaf = SearchScale([&](double s) { return count(divisions(s)); }, target,
     input->GetLength() / std::sqrt(static_cast<double>(target)), 2.0, 0.01, 40, found);
@@ -245,7 +278,7 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
         {
           const std::array<int, 3> d = { std::max(1, best[0] + dx), std::max(1, best[1] + dy),
             std::max(1, best[2] + dz) };
-          if (double(d[0]) * d[1] * d[2] <= MaxBins && error(count(d)) < error(count(next)))
+          if (DivisionsFit(d) && error(count(d)) < error(count(next)))
           {
             next = d;
           }
@@ -261,6 +294,12 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
   voxel->SetDivisions(best[0], best[1], best[2]);
   Method m;
   m.Name = "vtkVoxelGrid";
+  if (!DivisionsFit(best) || count(best) <= 0)
+  {
+    std::cerr << "vtkVoxelGrid: no configuration within " << MaxVoxelBins << " bins reaches N_s = " << target
+              << "; skipped\n";
+    return m; // empty Run: skipped
+  }
   m.Note = "divisions " + std::to_string(best[0]) + " x " + std::to_string(best[1]) + " x " +
     std::to_string(best[2]);
   m.Run = [voxel](bool keep) { return RunFilter(voxel, keep); };

@@ -17,6 +17,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -67,7 +68,19 @@ struct Method
 };
 
 Method MakeAsm(vtkPolyData* input, vtkIdType target, const AsmConfig& config);
-/// Leaf size searched with the real filter so that the count is within 1 % of target.
+/// vtkVoxelGrid allocates memory for every bin, empty or not (its locator's
+/// offsets and its bin map, 12-16 bytes per bin), and the products overflow
+/// past 2^31 bins: the benchmarks never give it more than MaxVoxelBins bins
+/// (2^28, about 4 GB); an N_s it cannot reach within them is marked "*".
+constexpr double MaxVoxelBins = 268435456.0;
+/// Whether divisions d are all >= 1 and their product is <= MaxVoxelBins.
+bool DivisionsFit(const std::array<int, 3>& d);
+/// Divisions of the box `bounds` (xmin xmax ymin ymax zmin zmax) for a cubic
+/// cell of edge s: round(range / s) per axis, each in [1, 2^20], the cell
+/// grown until the product fits MaxVoxelBins; s not finite or <= 0 gives the finest / coarsest grid.
+std::array<int, 3> VoxelDivisions(const double bounds[6], double s);
+
+/// Leaf size searched with the real filter (an empty Run when no grid within MaxVoxelBins works) so that the count is within 1 % of target.
 Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target);
 /// randomModeType: 1 random sampling, 2 spatially stratified (vtkMaskPoints).
 Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType);

@@ -6,9 +6,13 @@
  * count) on the same inputs, at each output fraction and thread count
  * (vtkSMPTools' STDThread backend), in one run (issue 8).
  *
- *   asm_speed_benchmark [--quick] [--runs 5] [--threads 1,2]
+ *   asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]
  *                       [--fractions 0.05,0.01,0.2] [--inputs spec,...]
  *                       [--no-memory] [--markdown] [more inputs ...]
+ *
+ * --readme: the README's run, sized for ~15 minutes on 2 idle cores: bunny,
+ * bunny-scans (../shared/data), bumps at 100k, 1M, 4M, 14M; N_s = 5 % (and 1 %,
+ * 20 % on bumps-1M); curvature off (also on at bumps-4M); runs 5 (3 at 14M).
  *
  * Inputs: .ply paths, or synthetic "bumps:100k" ... "bumps:14M" (a bumpy
  * sphere sampled uniformly by area). Default: the bundled scans and bumps
@@ -29,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -40,10 +45,12 @@ namespace
 {
 void Usage()
 {
-  std::cout << "usage: asm_speed_benchmark [--quick] [--runs 5] [--threads 1,2]\n"
+  std::cout << "usage: asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]\n"
                "                           [--fractions 0.05,0.01,0.2] [--inputs spec,...]\n"
                "                           [--no-memory] [--markdown] [input ...]\n"
-               "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n";
+               "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n"
+               "--readme: the README's run (~15 min on 2 idle cores): bunny, bunny-scans, bumps 100k..14M,\n"
+               "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n";
 }
 
 /// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
@@ -66,14 +73,184 @@ struct Timing
   double Median = NAN;
   vtkIdType Count = 0;
 };
+
+/// One input of the run with its own fractions, configurations and runs.
+struct Job
+{
+  std::string Spec;
+  std::vector<double> Fractions;
+  bool Curvature = true; ///< also the ASM configurations with curvature on
+  int Runs = 5;
+};
+
+/// One measured row, kept for the targets block.
+struct Record
+{
+  std::string Input;
+  vtkIdType N = 0;
+  double Fraction = 0.0;
+  std::string Method;
+  bool IsASM = false;
+  int Threads = 1;
+  double Median = NAN;
+  double Memory = NAN; ///< bytes per input point beyond input and output (first thread count)
+};
+
+const Record* Find(const std::vector<Record>& records, const std::string& input, double fraction,
+  const std::string& method, int threads)
+{
+  for (const Record& r : records)
+  {
+    if (r.Input == input && std::abs(r.Fraction - fraction) < 1e-9 && r.Method == method && r.Threads == threads)
+    {
+      return &r;
+    }
+  }
+  return nullptr;
+}
+
+double Mpts(const Record* r)
+{
+  return r ? static_cast<double>(r->N) / r->Median / 1e6 : NAN;
+}
+
+std::string Verdict(bool known, bool pass)
+{
+  return known ? (pass ? "PASS" : "FAIL") : "n/a ";
+}
+
+/// The targets of issue 8, checked on the records (n/a when the run lacks the data).
+void PrintTargets(const std::vector<Record>& records, const std::vector<int>& threads)
+{
+  const int one = 1, two = 2;
+  const double five = 0.05;
+  std::cout << "\n## Targets (issue 8), N_s = 5 %, curvature off\n\n";
+  const char* modes[] = { "ASM paper", "ASM default" };
+  const double goals[] = { 20.0, 10.0 };
+  for (int i = 0; i < 2; ++i)
+  {
+    std::string detail;
+    bool known = false, pass = true;
+    for (const char* input : { "bumps-4M", "bumps-14M" })
+    {
+      const double rate = Mpts(Find(records, input, five, modes[i], one));
+      if (std::isfinite(rate))
+      {
+        known = true;
+        pass = pass && rate >= goals[i];
+      }
+      detail += std::string(" ") + input + " " + Fixed(rate, 1);
+    }
+    std::cout << Verdict(known, pass) << "  " << modes[i] << " >= " << goals[i]
+              << " M input pt/s, 1 thread, 4M and 14M:" << detail << "\n";
+  }
+  {
+    std::string detail;
+    bool known = false, pass = true;
+    for (const char* mode : modes)
+    {
+      for (const char* input : { "bumps-4M", "bumps-14M" })
+      {
+        const Record* a = Find(records, input, five, mode, one);
+        const Record* b = Find(records, input, five, mode, two);
+        const double speedup = a && b ? a->Median / b->Median : NAN;
+        if (std::isfinite(speedup))
+        {
+          known = true;
+          pass = pass && speedup >= 1.7;
+        }
+        detail += std::string(" ") + mode + " " + input + " x" + Fixed(speedup, 2) + ";";
+      }
+    }
+    std::cout << Verdict(known, pass) << "  >= 1.7x from 1 to 2 threads, both modes, 4M and 14M:" << detail
+              << "\n";
+  }
+  {
+    // Both modes faster than vtkVoxelGrid on every input, fraction and thread count.
+    int cases = 0, wins = 0;
+    double worst = INFINITY;
+    std::string where;
+    for (const Record& r : records)
+    {
+      if (r.Method != modes[0] && r.Method != modes[1])
+      {
+        continue;
+      }
+      const Record* voxel = Find(records, r.Input, r.Fraction, "vtkVoxelGrid", r.Threads);
+      if (!voxel)
+      {
+        continue;
+      }
+      const double ratio = voxel->Median / r.Median;
+      ++cases;
+      wins += ratio > 1.0 ? 1 : 0;
+      if (ratio < worst)
+      {
+        worst = ratio;
+        where = r.Method + " on " + r.Input + " at " + Format(100.0 * r.Fraction, 3) + " %, " +
+          std::to_string(r.Threads) + " thread(s)";
+      }
+    }
+    std::cout << Verdict(cases > 0, wins == cases) << "  both modes faster than vtkVoxelGrid on every input: "
+              << wins << "/" << cases << " cases, slowest x" << Fixed(worst, 2) << " (" << where << ")\n";
+  }
+  for (const char* mode : modes)
+  {
+    // Time per point over the synthetic sizes, 1 thread.
+    double lo = INFINITY, hi = 0.0;
+    std::string detail;
+    int sizes = 0;
+    for (const Record& r : records)
+    {
+      if (r.Method == mode && r.Threads == one && std::abs(r.Fraction - five) < 1e-9 &&
+        r.Input.compare(0, 6, "bumps-") == 0)
+      {
+        const double ns = 1e9 * r.Median / static_cast<double>(r.N);
+        lo = std::min(lo, ns);
+        hi = std::max(hi, ns);
+        ++sizes;
+        detail += " " + r.Input + " " + Fixed(ns, 0) + " ns";
+      }
+    }
+    const double spread = sizes > 1 ? 100.0 * (hi / lo - 1.0) : NAN;
+    std::cout << Verdict(sizes > 1, spread < 25.0) << "  " << mode
+              << ": time per point within 25 % from 100k to 14M, 1 thread: spread " << Fixed(spread, 0) << " %;"
+              << detail << "\n";
+  }
+  {
+    double worst = 0.0;
+    std::string where;
+    bool known = false;
+    for (const Record& r : records)
+    {
+      if ((r.Method == modes[0] || r.Method == modes[1]) && std::isfinite(r.Memory))
+      {
+        known = true;
+        if (r.Memory >= worst)
+        {
+          worst = r.Memory;
+          where = r.Method + " on " + r.Input + " at " + Format(100.0 * r.Fraction, 3) + " %";
+        }
+      }
+    }
+    std::cout << Verdict(known, worst <= 48.0) << "  peak memory beyond input and output <= 48 B/pt, both modes:"
+              << " largest " << Fixed(worst, 1) << " B/pt (" << where << ")\n";
+  }
+  if (std::find(threads.begin(), threads.end(), 1) == threads.end() ||
+    std::find(threads.begin(), threads.end(), 2) == threads.end())
+  {
+    std::cout << "(threads 1 and 2 are both needed for every target)\n";
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  const std::string data = ASM_BENCHMARK_DATA_DIR;
   std::vector<std::string> inputs;
   for (const char* scan : { "bunny", "fandisk", "kitten", "laurana" })
   {
-    inputs.push_back(std::string(ASM_BENCHMARK_DATA_DIR) + "/" + scan + ".ply");
+    inputs.push_back(data + "/" + scan + ".ply");
   }
   for (const char* size : { "bumps:100k", "bumps:1M", "bumps:4M", "bumps:14M" })
   {
@@ -82,7 +259,7 @@ int main(int argc, char* argv[])
   std::vector<double> fractions = { 0.05, 0.01, 0.2 };
   std::vector<int> threads = { 1, 2 };
   int runs = 5;
-  bool markdown = false, memory = true;
+  bool markdown = false, memory = true, readme = false;
   std::vector<std::string> extra;
   for (int i = 1; i < argc; ++i)
   {
@@ -95,9 +272,13 @@ int main(int argc, char* argv[])
     }
     else if (arg == "--quick")
     {
-      inputs = { std::string(ASM_BENCHMARK_DATA_DIR) + "/kitten.ply", "bumps:20k" };
+      inputs = { data + "/kitten.ply", "bumps:20k" };
       fractions = { 0.05 };
       runs = 1;
+    }
+    else if (arg == "--readme")
+    {
+      readme = true;
     }
     else if (arg == "--markdown")
     {
@@ -141,48 +322,90 @@ int main(int argc, char* argv[])
       extra.push_back(arg);
     }
   }
-  inputs.insert(inputs.end(), extra.begin(), extra.end());
+
+  std::vector<Job> jobs;
+  if (readme)
+  {
+    // The README's run (issue 8's inputs, trimmed to ~15 minutes on 2 cores).
+    jobs.push_back({ data + "/bunny.ply", { 0.05 }, false, 5 });
+    const std::string scans = ASM_BENCHMARK_SHARED_DATA_DIR "/bunny-scans.ply";
+    if (std::ifstream(scans).good())
+    {
+      jobs.push_back({ scans, { 0.05 }, false, 5 });
+    }
+    jobs.push_back({ "bumps:100k", { 0.05 }, false, 5 });
+    jobs.push_back({ "bumps:1M", { 0.05, 0.01, 0.2 }, false, 5 });
+    jobs.push_back({ "bumps:4M", { 0.05 }, true, 5 });
+    jobs.push_back({ "bumps:14M", { 0.05 }, false, 3 });
+    threads = { 1, 2 };
+    for (const std::string& spec : extra)
+    {
+      jobs.push_back({ spec, { 0.05 }, false, 5 });
+    }
+  }
+  else
+  {
+    inputs.insert(inputs.end(), extra.begin(), extra.end());
+    for (const std::string& spec : inputs)
+    {
+      jobs.push_back({ spec, fractions, true, runs });
+    }
+  }
 
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
-  std::cout << "# asm_speed_benchmark, " << date << ", median of " << runs
-            << " run(s), vtkSMPTools STDThread backend, load average " << LoadAverage() << "\n"
+  const double started = Now();
+  std::cout << "# asm_speed_benchmark" << (readme ? " --readme" : "") << ", " << date << ", median of "
+            << (readme ? std::string("5 run(s) (3 at 14M)") : std::to_string(runs) + " run(s)")
+            << ", vtkSMPTools STDThread backend, load average " << LoadAverage() << "\n"
             << "# Mpt/s: million input points per second; x peer: peer time / ASM time (> 1: ASM"
-               " faster); mem: peak memory beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
+               " faster); x thr: time with the first thread count / this row's; mem: peak memory"
+               " beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
 
-  Table table({ "input", "N", "N_s", "method", "threads", "median s", "Mpt/s", "x vtkVoxelGrid",
-    "x vtkMaskPoints", "mem B/pt" });
+  const std::vector<std::string> columns = { "input", "N", "N_s", "method", "threads", "median s", "Mpt/s",
+    "x vtkVoxelGrid", "x vtkMaskPoints", "x thr", "mem B/pt" };
   // Summary data: seconds per input point, by ASM configuration, fraction, input, threads.
   std::map<std::string, std::map<std::string, std::map<int, double>>> perPoint; // key: config@fraction
   std::vector<std::string> order;
-  for (const std::string& spec : inputs)
+  std::vector<Record> records;
+  for (const Job& job : jobs)
   {
     SetThreads(threads.back());
-    const Input input = MakeInput(spec);
+    const Input input = MakeInput(job.Spec);
     if (!input.Data)
     {
       continue;
     }
     order.push_back(input.Name);
     const vtkIdType n = input.NumberOfPoints();
-    for (double fraction : fractions)
+    for (double fraction : job.Fractions)
     {
       const vtkIdType target = std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
       SetThreads(threads.back());
       std::vector<Method> methods;
       for (const AsmConfig& c : AsmConfigurations())
       {
+        if (c.Curvature && !job.Curvature)
+        {
+          continue;
+        }
         Method m = MakeAsm(input.Data, target, c);
         if (m.Run)
         {
           methods.push_back(m);
         }
       }
-      methods.push_back(MakeVoxelGrid(input.Data, target)); // the search is not timed
-      methods.push_back(MakeMaskPoints(input.Data, target, 1));
+      for (Method m : { MakeVoxelGrid(input.Data, target), MakeMaskPoints(input.Data, target, 1) })
+      {
+        if (m.Run) // the search is not timed; an empty Run: the peer cannot run this configuration
+        {
+          methods.push_back(m);
+        }
+      }
 
-      std::map<std::string, double> memoryPerPoint;
+      Table table(columns);
+      std::map<std::string, double> memoryPerPoint, firstMedian;
       for (int t : threads)
       {
         SetThreads(t);
@@ -191,12 +414,20 @@ int main(int argc, char* argv[])
         {
           std::vector<double> seconds;
           Timing timing;
-          m.Run(false); // warm-up, not timed
-          for (int r = 0; r < runs; ++r)
+          try
           {
-            const RunResult result = m.Run(false);
-            seconds.push_back(result.Seconds);
-            timing.Count = result.Count;
+            m.Run(false); // warm-up, not timed
+            for (int r = 0; r < job.Runs; ++r)
+            {
+              const RunResult result = m.Run(false);
+              seconds.push_back(result.Seconds);
+              timing.Count = result.Count;
+            }
+          }
+          catch (const std::exception& e)
+          {
+            std::cerr << m.Name << " failed on " << input.Name << " (" << e.what() << "); row skipped\n";
+            continue;
           }
           timing.Median = Median(seconds);
           timings[m.Name] = timing;
@@ -208,11 +439,21 @@ int main(int argc, char* argv[])
         }
         for (const Method& m : methods)
         {
+          if (!timings.count(m.Name))
+          {
+            continue;
+          }
           const Timing& timing = timings[m.Name];
           auto ratio = [&](const char* peer) {
-            return m.IsASM ? "x" + Format(timings[peer].Median / timing.Median, 3) : std::string();
+            const auto it = timings.find(peer);
+            return !m.IsASM ? std::string() : it == timings.end() ? "-" : "x" + Format(it->second.Median / timing.Median, 3);
           };
+          if (t == threads.front())
+          {
+            firstMedian[m.Name] = timing.Median;
+          }
           const auto mem = memoryPerPoint.find(m.Name);
+          const bool hasMemory = t == threads.front() && mem != memoryPerPoint.end();
           // "*": the method could not be driven within 1 % of N_s.
           const bool off = std::abs(static_cast<double>(timing.Count - target)) >
             std::max(0.5, 0.01 * static_cast<double>(target));
@@ -220,7 +461,10 @@ int main(int argc, char* argv[])
             std::to_string(t), Format(timing.Median, 3),
             Fixed(static_cast<double>(n) / timing.Median / 1e6, 1), ratio("vtkVoxelGrid"),
             ratio("vtkMaskPoints random"),
-            t == threads.front() && mem != memoryPerPoint.end() ? Fixed(mem->second, 1) : "" });
+            t != threads.front() && firstMedian.count(m.Name) ? "x" + Fixed(firstMedian[m.Name] / timing.Median, 2) : "",
+            hasMemory ? Fixed(mem->second, 1) : "" });
+          records.push_back({ input.Name, n, fraction, m.Name, m.IsASM, t, timing.Median,
+            hasMemory ? mem->second : NAN });
           if (m.IsASM)
           {
             perPoint[m.Name + " @ " + Format(100.0 * fraction, 3) + " %"][input.Name][t] =
@@ -230,9 +474,7 @@ int main(int argc, char* argv[])
       }
       // Print as we go: the full run takes a while.
       table.Print(std::cout, markdown);
-      std::cout << "\n";
-      table = Table({ "input", "N", "N_s", "method", "threads", "median s", "Mpt/s",
-        "x vtkVoxelGrid", "x vtkMaskPoints", "mem B/pt" });
+      std::cout << "\n" << std::flush;
     }
   }
 
@@ -274,6 +516,8 @@ int main(int argc, char* argv[])
     summary.Add(cells);
   }
   summary.Print(std::cout, markdown);
-  std::cout << "\n# load average at the end: " << LoadAverage() << "\n";
+  PrintTargets(records, threads);
+  std::cout << "\n# load average at the end: " << LoadAverage() << "; wall time " << Fixed(Now() - started, 0)
+            << " s\n";
   return 0;
 }

@@ -157,3 +157,30 @@ TEST(BenchmarkMethods, PeersAreDrivenToTheCount)
   const asmbench::AsmConfig paper{ "paper", asmbench::AsmMode::Paper, false };
   EXPECT_EQ(asmbench::MakeAsm(kitten.Data, 261, paper).Run(false).Count, 261);
 }
+
+// vtkVoxelGrid allocates every bin: the divisions the search tries must never
+// exceed MaxVoxelBins (2^28), whatever the cell size asked for (a tiny or
+// non-finite one, a flat box), else std::bad_array_new_length on big clouds.
+TEST(BenchmarkMethods, VoxelDivisionsStayWithinTheBinBound)
+{
+  const double cube[6] = { -1.2, 1.2, -1.4, 1.4, -1.1, 1.1 };
+  const double flat[6] = { 0.0, 100.0, 0.0, 50.0, 0.0, 0.0 };
+  for (const double* bounds : { cube, flat })
+  {
+    for (double s : { 1.0, 1e-2, 1e-3, 1e-5, 1e-9, 0.0, -1.0, NAN, INFINITY })
+    {
+      const std::array<int, 3> d = asmbench::VoxelDivisions(bounds, s);
+      EXPECT_TRUE(asmbench::DivisionsFit(d)) << "s = " << s;
+      EXPECT_LE(double(d[0]) * d[1] * d[2], asmbench::MaxVoxelBins) << "s = " << s;
+    }
+  }
+  // A cell large enough is used as asked: round(range / s) per axis.
+  const std::array<int, 3> d = asmbench::VoxelDivisions(cube, 0.01);
+  EXPECT_EQ(d, (std::array<int, 3>{ 240, 280, 220 }));
+  EXPECT_EQ(asmbench::VoxelDivisions(flat, 1.0), (std::array<int, 3>{ 100, 50, 1 }));
+  // The finest grid of a cube is close to the bound (cube root of 2^28 = 645 per unit axis).
+  const std::array<int, 3> fine = asmbench::VoxelDivisions(cube, 1e-9);
+  EXPECT_GT(double(fine[0]) * fine[1] * fine[2], 0.9 * asmbench::MaxVoxelBins);
+  EXPECT_FALSE(asmbench::DivisionsFit({ 2000, 2000, 2000 }));
+  EXPECT_FALSE(asmbench::DivisionsFit({ 0, 10, 10 }));
+}
