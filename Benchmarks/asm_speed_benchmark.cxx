@@ -159,7 +159,7 @@ void PrintTargets(const std::vector<Record>& records, const std::vector<int>& th
           known = true;
           pass = pass && speedup >= 1.7;
         }
-        detail += std::string(" ") + mode + " " + input + " x" + Fixed(speedup, 2) + ";";
+        detail += std::string(" ") + mode + " " + input + " " + (std::isfinite(speedup) ? "x" + Fixed(speedup, 2) : "-") + ";";
       }
     }
     std::cout << Verdict(known, pass) << "  >= 1.7x from 1 to 2 threads, both modes, 4M and 14M:" << detail

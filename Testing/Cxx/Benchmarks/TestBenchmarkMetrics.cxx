@@ -167,7 +167,7 @@ TEST(BenchmarkMethods, VoxelDivisionsStayWithinTheBinBound)
   const double flat[6] = { 0.0, 100.0, 0.0, 50.0, 0.0, 0.0 };
   for (const double* bounds : { cube, flat })
   {
-    for (double s : { 1.0, 1e-2, 1e-3, 1e-5, 1e-9, 0.0, -1.0, NAN, INFINITY })
+    for (double s : std::vector<double>{ 1.0, 1e-2, 1e-3, 1e-5, 1e-9, 0.0, -1.0, std::nan(""), HUGE_VAL })
     {
       const std::array<int, 3> d = asmbench::VoxelDivisions(bounds, s);
       EXPECT_TRUE(asmbench::DivisionsFit(d)) << "s = " << s;
