@@ -30,6 +30,12 @@ set(ASM_FILTERS_CORE
   Curvature
   Metrics
 )
+# Private VTK-layer helpers (not wrapped, not installed): <Name>.h + <Name>.cxx
+# in Filters/. vtkASMDistributed: the MPI communication (VTK::ParallelCore).
+set(ASM_FILTERS_PRIVATE
+  vtkASMDistributed
+  vtkASMDistributedMetrics
+)
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
@@ -48,6 +54,10 @@ set(_asm_private_headers)
 foreach (_asm_core IN LISTS ASM_FILTERS_CORE)
   list(APPEND _asm_sources "${_asm_filters_dir}/Core/${_asm_core}.cxx")
   list(APPEND _asm_private_headers "${_asm_filters_dir}/Core/${_asm_core}.h")
+endforeach ()
+foreach (_asm_private IN LISTS ASM_FILTERS_PRIVATE)
+  list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_private}.cxx")
+  list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_private}.h")
 endforeach ()
 foreach (_asm_header IN LISTS ASM_FILTERS_EXTRA_PRIVATE_HEADERS)
   list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_header}")

@@ -143,8 +143,16 @@ Index CountOccupiedCells(const double* xyz, const std::vector<Index>& ids, const
 double AutomaticCellSize(
   const double* xyz, const std::vector<Index>& ids, const Bounds& bounds, double targetCells)
 {
+  return AutomaticCellSize(bounds, targetCells, ids.empty(), [&](const GridSpec& spec) {
+    return static_cast<double>(CountOccupiedCells(xyz, ids, spec));
+  });
+}
+
+double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
+  const std::function<double(const GridSpec&)>& countOccupied)
+{
   const double maxExtent = bounds.MaxExtent();
-  if (ids.empty() || !(maxExtent > 0.0))
+  if (empty || !(maxExtent > 0.0))
   {
     return GridSpec::Make(bounds, 0.0).CellSize; // one cell holds everything
   }
@@ -164,7 +172,7 @@ double AutomaticCellSize(
   for (int iteration = 0; iteration < 12; ++iteration)
   {
     h = GridSpec::Make(bounds, h).CellSize;
-    const double count = static_cast<double>(CountOccupiedCells(xyz, ids, GridSpec::Make(bounds, h)));
+    const double count = countOccupied(GridSpec::Make(bounds, h));
     const double err = std::abs(std::log(count / targetCells));
     if (err < bestErr)
     {

@@ -113,31 +113,68 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
+std::vector<double> CellShares(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const SimplifyParameters& parameters)
+{
+  const std::size_t cells = capacity.size();
+  double meanVariation = 0.0;
+  Index total = 0;
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    meanVariation += variation[c] * static_cast<double>(capacity[c]);
+    total += capacity[c];
+  }
+  meanVariation /= static_cast<double>(std::max<Index>(1, total));
+  std::vector<double> share(cells);
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    double weight = 1.0;
+    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    {
+      weight += parameters.CurvatureWeight * variation[c] / meanVariation;
+    }
+    share[c] = weight * static_cast<double>(capacity[c]);
+  }
+  return share;
+}
+
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
-  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  const Index target = parameters.CellBudget
+    ? total
+    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
   if (total == 0 || target == 0)
   {
     return result;
   }
 
   // 1. Hash the points into the grid.
-  const Bounds bounds = ComputeBounds(xyz, ids);
-  double cellSize = parameters.CellSize;
-  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  GridSpec spec;
+  if (parameters.Grid)
   {
-    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+    spec = *parameters.Grid;
+  }
+  else
+  {
+    const Bounds bounds = ComputeBounds(xyz, ids);
+    double cellSize = parameters.CellSize;
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+    {
+      const double targetCells =
+        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+    }
+    spec = GridSpec::Make(bounds, cellSize);
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;
@@ -162,25 +199,25 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 3. Budgets (Eq. 4), exact in total.
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  std::vector<Index> capacity(static_cast<std::size_t>(cells));
-  double meanVariation = 0.0;
-  for (Index c = 0; c < cells; ++c)
+  std::vector<Index> budget(static_cast<std::size_t>(cells));
+  if (parameters.CellBudget)
   {
-    capacity[c] = grid.CellSizeOf(c);
-    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
-  }
-  meanVariation /= static_cast<double>(total);
-  for (Index c = 0; c < cells; ++c)
-  {
-    double weight = 1.0;
-    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    for (Index c = 0; c < cells; ++c)
     {
-      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+      budget[c] = std::min(grid.CellSizeOf(c), parameters.CellBudget(grid.CellKey[c]));
     }
-    share[c] = weight * static_cast<double>(capacity[c]);
   }
-  const std::vector<Index> budget = ApportionBudget(share, capacity, target);
+  else
+  {
+    std::vector<Index> capacity(static_cast<std::size_t>(cells));
+    std::vector<double> variation(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      capacity[c] = grid.CellSizeOf(c);
+      variation[c] = frames[c].SurfaceVariation();
+    }
+    budget = ApportionBudget(CellShares(capacity, variation, parameters), capacity, target);
+  }
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
@@ -190,11 +227,18 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   result.Members.assign(static_cast<std::size_t>(total), -1);
 
   Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
-  for (Index id : ids)
+  if (parameters.CloudCentroid)
   {
-    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
   }
-  cloudCentroid /= static_cast<double>(total);
+  else
+  {
+    for (Index id : ids)
+    {
+      cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    }
+    cloudCentroid /= static_cast<double>(total);
+  }
 
   KeyPointRule rule;
   rule.Alpha = parameters.Alpha;

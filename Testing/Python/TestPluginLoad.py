@@ -31,6 +31,7 @@ expected_defaults = {
     "GenerateCurvature": 1,
     "CurvatureNeighbors": 20,
     "OutputPointsPrecision": "Same as input",
+    "AlwaysDistribute": 0,
 }
 # Nothing in the XML that the test does not know about.
 listed = set(asm.ListProperties()) - {"Input"}
