@@ -8,7 +8,9 @@ parallel (each process makes its share, seeded by process id), simplified to
 
 PYTHONPATH must hold the build tree's asmvtk package (build/lib/python3/dist-packages).
 Prints, on process 0: processes, points, output points, wall time of the
-filter (max over processes), and each process's peak resident memory.
+filter (max over processes), each process's CPU time in the filter (what
+a loaded machine cannot inflate) and peak resident memory (of the whole
+process: the generated cloud included).
 The cloud: points on a wavy sphere-like surface (r = 1 + 0.1 sin(5u) sin(4v))
 with 0.2 % noise, so the cells hold curved patches, as scans do.
 """
@@ -58,17 +60,17 @@ asm.SetOutputFraction(args.fraction)
 asm.SetAlwaysDistribute(args.always_distribute)
 asm.SetGenerateCurvature(not args.no_curvature)
 controller.Barrier()
-start = time.perf_counter()
+start, cpu_start = time.perf_counter(), time.process_time()
 asm.Update()
-elapsed = time.perf_counter() - start
+elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu_start
 
 out = asm.GetOutput().GetNumberOfPoints()
 peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-send = np.array([elapsed, out, peak_mib])
-gathered = np.zeros(3 * size)
-controller.AllGather(send, gathered, 3)
+send = np.array([elapsed, out, peak_mib, cpu])
+gathered = np.zeros(4 * size)
+controller.AllGather(send, gathered, 4)
 if rank == 0:
-    g = gathered.reshape(size, 3)
-    print("processes %d  points %d  output %d  time %.2f s  peak MiB per process %s"
+    g = gathered.reshape(size, 4)
+    print("processes %d  points %d  output %d  wall %.2f s  CPU s per process %s  peak MiB per process %s"
           % (size, args.points, int(g[:, 1].sum()), g[:, 0].max(),
-             " ".join("%.0f" % m for m in g[:, 2])))
+             " ".join("%.1f" % c for c in g[:, 3]), " ".join("%.0f" % m for m in g[:, 2])))
