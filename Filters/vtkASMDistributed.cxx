@@ -484,31 +484,45 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   send.clear();
   send.shrink_to_fit();
 
-  // Canonical order: cell key, coordinates, then the record's bytes.
+  // Canonical order: cell key, coordinates, then the record's bytes. Sorted
+  // as compact items (no indirection unless two points coincide).
+  struct Item
+  {
+    std::uint64_t Key;
+    double P[3];
+    std::size_t Record;
+  };
   const std::size_t n = received.size() / static_cast<std::size_t>(width);
-  std::vector<std::uint64_t> keys(n);
+  std::vector<Item> items(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    keys[i] = partition.Grid.KeyOf(received.data() + i * width);
+    const double* r = received.data() + i * width;
+    items[i] = { partition.Grid.KeyOf(r), { r[0], r[1], r[2] }, i };
   }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    if (keys[a] != keys[b])
+  std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
+    if (a.Key != b.Key)
     {
-      return keys[a] < keys[b];
+      return a.Key < b.Key;
     }
-    const double* ra = received.data() + a * width;
-    const double* rb = received.data() + b * width;
     for (int c = 0; c < 3; ++c)
     {
-      if (ra[c] != rb[c])
+      if (a.P[c] != b.P[c])
       {
-        return ra[c] < rb[c];
+        return a.P[c] < b.P[c];
       }
     }
-    return std::memcmp(ra + 3, rb + 3, sizeof(double) * (payloadEnd - 3)) < 0;
+    return std::memcmp(received.data() + a.Record * width + 3,
+             received.data() + b.Record * width + 3, sizeof(double) * (payloadEnd - 3)) < 0;
   });
+  std::vector<std::uint64_t> keys(n);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    keys[items[i].Record] = items[i].Key;
+    order[i] = items[i].Record;
+  }
+  items.clear();
+  items.shrink_to_fit();
 
   cloud.Xyz.resize(3 * n);
   cloud.Ids.resize(n);
@@ -540,7 +554,9 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     std::copy(r, r + 3, cloud.Xyz.begin() + 3 * i);
     cloud.Ids[i] = static_cast<Index>(i);
     cloud.Keys[i] = keys[order[i]];
-    cloud.Owned[i] = partition.OwnerOf(partition.AxisIndex(r)) == comm.Rank() ? 1 : 0;
+    std::int64_t ijk[3];
+    partition.Grid.Unpack(cloud.Keys[i], ijk);
+    cloud.Owned[i] = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
     cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
     cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
     for (std::size_t k = 0; k < slots.size(); ++k)

@@ -21,14 +21,33 @@
  *    one record per point, with the sending process and point id.
  * 3. A canonical order. A process sorts the points it received by cell key,
  *    then coordinates, then array values, so a cell's points reach the core
- *    in the same order whatever the partition (the serial path orders them
- *    by input id instead, so a non-MPI run may break ties differently).
+ *    in the same order whatever the partition. The serial path orders them
+ *    by input id instead (and is left unchanged), which changes which key
+ *    points a cell keeps when its budget is below its key point count (about
+ *    1 sample in 8 moves on the bunny when the input order is shuffled).
+ *    So a one-process run uses this path only with AlwaysDistribute on; then
+ *    1, 2, 3... processes give the same points. (ParaView built with MPI
+ *    has an MPI controller with one process even in the built-in session,
+ *    so one process cannot tell "mpiexec -n 1" from a desktop session.)
  * 4. One global budget. The owners' (cell key, point count, surface
  *    variation) are gathered on process 0, which computes the shares of
  *    Eq. 4 and apportions N_s exactly as the serial code does (cells in key
  *    order, largest remainder), and scatters the budgets back.
  * 5. Figures (AKPE, MKPE, counts) are sums and maxima reduced over the
  *    processes; per-cell seeds come from the cell key, as in serial runs.
+ * 6. Curvature arrays are estimated by the owner of a sample's cell from the
+ *    owned and halo points: exact while a sample's CurvatureNeighbors
+ *    nearest input points lie within HaloRings cells (a cell holds about
+ *    SamplesPerCell / fraction points, e.g. 160 at 5 %, so 20 neighbours
+ *    are well inside; only with very few points per cell could a
+ *    neighbourhood reach past the halo, and the estimate would then use the
+ *    nearest points available).
+ *
+ * Only numeric point-data arrays travel (string arrays are dropped with a
+ * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
+ * The core runs unchanged on each process's points through hooks in
+ * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid); halo cells
+ * are passed to it too (budget 0) so cross-cell steps can see neighbours.
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h

@@ -46,6 +46,16 @@
  * The output is deterministic: the same input, parameters and RandomSeed give
  * the same points in the same order whatever the number of threads.
  *
+ * Parallel (MPI) runs, e.g. pvbatch --mpi or a pvserver with several
+ * processes: the points of all processes are simplified as one cloud,
+ * however they are split (one global grid, one owner process per grid cell,
+ * points redistributed to the owners with a halo of neighbouring cells, one
+ * budget of exactly N_s over all processes, global AKPE/MKPE); each process
+ * outputs the samples of the cells it owns, with "vtkOriginalProcessIds"
+ * next to "vtkOriginalPointIds". With AlwaysDistribute on, 1, 2, 3...
+ * processes give the same points (up to floating-point summation order).
+ * Design and limits: vtkASMDistributed.h. Without MPI nothing changes.
+ *
  * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
  */
 
