@@ -17,6 +17,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace asmvtk
 {
@@ -117,11 +118,11 @@ namespace
 // has no AllToAllV; collectives cannot deadlock whatever the message sizes).
 template <typename T>
 std::vector<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
-  const std::vector<std::vector<T>>& send)
+  std::vector<std::vector<T>>& send)
 {
   if (size == 1)
   {
-    return send[0];
+    return std::move(send[0]);
   }
   std::vector<long long> lengths(static_cast<std::size_t>(size));
   for (int r = 0; r < size; ++r)
@@ -148,6 +149,7 @@ std::vector<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
       recvLengths.data(), offsets.data(), root);
   }
   received.resize(static_cast<std::size_t>(total));
+  send.clear();
   return received;
 }
 
@@ -158,13 +160,13 @@ std::uint64_t Mix(std::uint64_t key)
 }
 } // namespace
 
-std::vector<double> Communication::Exchange(const std::vector<std::vector<double>>& send) const
+std::vector<double> Communication::Exchange(std::vector<std::vector<double>>& send) const
 {
   return ExchangeImpl(this->Ctrl, this->LocalRank, this->Processes, send);
 }
 
 std::vector<long long> Communication::Exchange(
-  const std::vector<std::vector<long long>>& send) const
+  std::vector<std::vector<long long>>& send) const
 {
   return ExchangeImpl(this->Ctrl, this->LocalRank, this->Processes, send);
 }
@@ -481,8 +483,6 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     }
   }
   const std::vector<double> received = comm.Exchange(send);
-  send.clear();
-  send.shrink_to_fit();
 
   // Canonical order: cell key, coordinates, then the record's bytes. Sorted
   // as compact items (no indirection unless two points coincide).
