@@ -581,14 +581,16 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
     return asmcore::ApportionBudget(asmcore::CellShares(capacity, variation, parameters),
       capacity, target);
   }
-  // Cells travel as (key, count, variation) triples of doubles: keys and
-  // counts are below 2^53, so they are exact.
+  // Cells travel as (key / 2^32, key % 2^32, count, variation) as doubles:
+  // each part is exact (keys reach 2^63, beyond a double's 2^53).
+  constexpr int W = 4;
   std::vector<double> mine;
-  mine.reserve(3 * keys.size());
+  mine.reserve(W * keys.size());
   for (std::size_t c = 0; c < keys.size(); ++c)
   {
-    mine.insert(mine.end(),
-      { static_cast<double>(keys[c]), static_cast<double>(capacity[c]), variation[c] });
+    mine.insert(mine.end(), { static_cast<double>(keys[c] >> 32),
+                              static_cast<double>(keys[c] & 0xFFFFFFFFULL),
+                              static_cast<double>(capacity[c]), variation[c] });
   }
   long long n = static_cast<long long>(mine.size());
   std::vector<long long> counts(static_cast<std::size_t>(comm.Size()));
@@ -606,20 +608,21 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
     static_cast<vtkIdType>(mine.size()), lengths.data(), offsets.data(), 0);
 
   // Process 0: every cell, in key order, as the serial code sees them.
-  std::vector<double> budgets(static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total / 3, 1) : 1));
+  std::vector<double> budgets(static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total / W, 1) : 1));
   if (comm.Rank() == 0)
   {
-    const std::size_t cells = static_cast<std::size_t>(total / 3);
+    const std::size_t cells = static_cast<std::size_t>(total / W);
     std::vector<std::size_t> order(cells);
     std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(),
-      [&](std::size_t a, std::size_t b) { return all[3 * a] < all[3 * b]; });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return all[W * a] < all[W * b] || (all[W * a] == all[W * b] && all[W * a + 1] < all[W * b + 1]);
+    });
     std::vector<Index> cap(cells);
     std::vector<double> var(cells);
     for (std::size_t i = 0; i < cells; ++i)
     {
-      cap[i] = static_cast<Index>(all[3 * order[i] + 1]);
-      var[i] = all[3 * order[i] + 2];
+      cap[i] = static_cast<Index>(all[W * order[i] + 2]);
+      var[i] = all[W * order[i] + 3];
     }
     const std::vector<Index> sorted =
       asmcore::ApportionBudget(asmcore::CellShares(cap, var, parameters), cap, target);
@@ -631,8 +634,8 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
   std::vector<vtkIdType> cellLengths(lengths.size()), cellOffsets(lengths.size());
   for (std::size_t r = 0; r < lengths.size(); ++r)
   {
-    cellLengths[r] = lengths[r] / 3;
-    cellOffsets[r] = offsets[r] / 3;
+    cellLengths[r] = lengths[r] / W;
+    cellOffsets[r] = offsets[r] / W;
   }
   std::vector<double> back(std::max<std::size_t>(keys.size(), 1));
   comm.Controller()->ScatterV(budgets.data(), back.data(), cellLengths.data(), cellOffsets.data(),
