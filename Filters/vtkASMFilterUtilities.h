@@ -14,6 +14,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
@@ -22,7 +23,14 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h> // madvise
+#endif
 
 namespace asmvtk
 {
@@ -39,6 +47,145 @@ inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>
   const auto range = vtk::DataArrayValueRange<3>(data);
   std::copy(range.begin(), range.end(), copy.begin());
   return copy.data();
+}
+
+/// Asks the kernel to back [data, data + bytes) with huge pages where it can
+/// (Linux; a hint, no effect elsewhere). For large arrays read in random
+/// order, e.g. the coordinates gathered cell by cell: far fewer TLB misses
+/// and page faults. Call before the memory is first written.
+inline void AdviseHugePages(void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::uintptr_t huge = std::uintptr_t(1) << 21;
+  if (bytes < 4 * huge)
+  {
+    return;
+  }
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
+  if (end > begin)
+  {
+    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+
+/// The coordinates of `points` as N x 3 doubles, and in `ids` the ids of the
+/// points whose coordinates are finite, ascending. Doubles are used in place;
+/// other types are converted into `copy` (not zero-filled first). Both passes
+/// run in parallel (vtkSMPTools) over fixed blocks: the result does not
+/// depend on the thread count.
+inline const double* PrepareCoordinates(
+  vtkPoints* points, std::unique_ptr<double[]>& copy, std::vector<asmcore::Index>& ids)
+{
+  using asmcore::Index;
+  vtkDataArray* data = points->GetData();
+  const Index n = points->GetNumberOfPoints();
+  const double* xyz = nullptr;
+  auto* floats = vtkFloatArray::SafeDownCast(data);
+  if (auto* doubles = vtkDoubleArray::SafeDownCast(data))
+  {
+    xyz = doubles->GetPointer(0);
+  }
+  else
+  {
+    copy.reset(new double[static_cast<std::size_t>(3 * n)]);
+    AdviseHugePages(copy.get(), static_cast<std::size_t>(3 * n) * sizeof(double));
+    xyz = copy.get();
+  }
+  const Index blockSize = Index(1) << 15;
+  const Index blocks = (n + blockSize - 1) / blockSize;
+  std::vector<Index> finite(static_cast<std::size_t>(blocks) + 1, 0);
+  vtkSMPTools::For(0, blocks, [&](vtkIdType first, vtkIdType last) {
+    for (Index k = first; k < last; ++k)
+    {
+      const Index begin = k * blockSize;
+      const Index end = std::min(n, begin + blockSize);
+      double* out = copy ? copy.get() : nullptr;
+      if (floats)
+      {
+        const float* in = floats->GetPointer(0);
+        for (Index i = 3 * begin; i < 3 * end; ++i)
+        {
+          out[i] = static_cast<double>(in[i]);
+        }
+      }
+      else if (out)
+      {
+        const auto range = vtk::DataArrayValueRange<3>(data, begin, end);
+        std::copy(range.begin(), range.end(), out + 3 * begin);
+      }
+      Index count = 0;
+      for (Index i = begin; i < end; ++i)
+      {
+        const double* p = xyz + 3 * i;
+        count += (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) ? 1 : 0;
+      }
+      finite[k + 1] = count;
+    }
+  });
+  for (Index k = 0; k < blocks; ++k)
+  {
+    finite[k + 1] += finite[k];
+  }
+  ids.resize(static_cast<std::size_t>(finite[blocks]));
+  vtkSMPTools::For(0, blocks, [&](vtkIdType first, vtkIdType last) {
+    for (Index k = first; k < last; ++k)
+    {
+      const Index begin = k * blockSize;
+      const Index end = std::min(n, begin + blockSize);
+      Index* out = ids.data() + finite[k];
+      if (finite[k + 1] - finite[k] == end - begin)
+      {
+        for (Index i = begin; i < end; ++i)
+        {
+          *out++ = i;
+        }
+        continue;
+      }
+      for (Index i = begin; i < end; ++i)
+      {
+        const double* p = xyz + 3 * i;
+        if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+        {
+          *out++ = i;
+        }
+      }
+    }
+  });
+  return xyz;
+}
+
+/// The 3-component array `data` as N x 3 doubles in `copy` (float and double
+/// arrays copied directly, in parallel; others through the generic API).
+inline const double* TuplesAsDoubles(vtkDataArray* data, std::unique_ptr<double[]>& copy)
+{
+  const vtkIdType n = data->GetNumberOfTuples();
+  copy.reset(new double[static_cast<std::size_t>(3 * n)]);
+  double* out = copy.get();
+  auto* floats = vtkFloatArray::SafeDownCast(data);
+  auto* doubles = vtkDoubleArray::SafeDownCast(data);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    if (floats)
+    {
+      const float* in = floats->GetPointer(0);
+      std::copy(in + 3 * begin, in + 3 * end, out + 3 * begin);
+    }
+    else if (doubles)
+    {
+      const double* in = doubles->GetPointer(0);
+      std::copy(in + 3 * begin, in + 3 * end, out + 3 * begin);
+    }
+    else
+    {
+      const auto range = vtk::DataArrayValueRange<3>(data, begin, end);
+      std::copy(range.begin(), range.end(), out + 3 * begin);
+    }
+  });
+  return out;
 }
 
 /// Runs the core's loops with vtkSMPTools; progress goes to `algorithm`,

@@ -26,6 +26,11 @@ set(ASM_FILTERS_CORE
   KeyPoints
   Budget
   Simplify
+  CellNeighbors
+  FeatureKeyPoints
+  Lloyd
+  HoleFilling
+  FeatureSimplify
   Neighbors
   Curvature
   Metrics

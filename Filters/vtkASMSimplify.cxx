@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -60,7 +61,7 @@ struct AggregateWorker
       {
         const asmcore::Sample& sample = result.Samples[s];
         auto dst = outTuples[s];
-        if (snap)
+        if (snap || sample.ClusterSize == 0)
         {
           const auto src = inTuples[sample.Representative];
           std::copy(src.begin(), src.end(), dst.begin());
@@ -199,6 +200,9 @@ bool vtkASMSimplify::CheckParameters()
 int vtkASMSimplify::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort (ParaView's Cancel) stops one run; VTK 9.2's executive never
+  // clears the flag, so without this every later run would abort at once.
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -223,10 +227,11 @@ int vtkASMSimplify::RequestData(
   }
 
   // Coordinates, finite points, and the requested output size.
-  std::vector<double> coordinateCopy;
-  const double* xyz =
-    numberOfPoints > 0 ? asmvtk::CoordinatesAsDoubles(input->GetPoints(), coordinateCopy) : nullptr;
-  std::vector<Index> ids = asmcore::FinitePointIds(xyz, numberOfPoints);
+  std::unique_ptr<double[]> coordinateCopy;
+  std::vector<Index> ids;
+  const double* xyz = numberOfPoints > 0
+    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids)
+    : nullptr;
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   vtkIdType skipped = numberOfPoints - valid;
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
@@ -263,6 +268,15 @@ int vtkASMSimplify::RequestData(
   }
 
   asmcore::SimplifyParameters parameters;
+  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
+                                        : asmcore::SimplifyMode::FeaturePreserving;
+  if (distributed && parameters.Mode != asmcore::SimplifyMode::Paper)
+  {
+    // The feature-preserving steps (cross-cell validation and Lloyd, hole
+    // filling, its budget rule) are not distributed yet.
+    vtkWarningMacro(<< "Distributed runs use the paper's mode (Mode = Paper) for now.");
+    parameters.Mode = asmcore::SimplifyMode::Paper;
+  }
   parameters.NumberOfSamples = target;
   parameters.CellSize = this->CellSize;
   parameters.SamplesPerCell = this->SamplesPerCell;
@@ -290,16 +304,13 @@ int vtkASMSimplify::RequestData(
     parameters.CloudCentroid = share.Centroid;
   }
 
-  std::vector<double> normalCopy;
+  std::unique_ptr<double[]> normalCopy;
   const double* normals = nullptr;
   if (vtkDataArray* inNormals = inPD->GetNormals())
   {
-    if (inNormals->GetNumberOfComponents() == 3)
+    if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
     {
-      normalCopy.resize(static_cast<std::size_t>(3 * numberOfPoints));
-      const auto range = vtk::DataArrayValueRange<3>(inNormals);
-      std::copy(range.begin(), range.end(), normalCopy.begin());
-      normals = normalCopy.data();
+      normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
     }
   }
 
@@ -312,6 +323,18 @@ int vtkASMSimplify::RequestData(
   }
   parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
   parameters.Snap = this->SnapToInputPoints;
+  parameters.ValidateKeyPoints = this->ValidateKeyPoints;
+  parameters.KeyPointRadius = this->KeyPointRadius;
+  parameters.KeyPointProminence = this->KeyPointProminence;
+  parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
+  parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
+  parameters.CoverEveryCell = this->CoverEveryCell;
+  parameters.BudgetExponent = this->BudgetExponent;
+  parameters.LloydIterations = this->LloydIterations;
+  parameters.CrossCellIterations = this->CrossCellIterations;
+  parameters.InputPointSamples = this->InputPointSamples;
+  parameters.FillHoles = this->FillHoles;
+  parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
@@ -406,7 +429,7 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids);
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
     {
@@ -434,6 +457,19 @@ int vtkASMSimplify::RequestData(
 void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == PAPER ? "Paper" : "FeaturePreserving") << "\n";
+  os << indent << "ValidateKeyPoints: " << this->ValidateKeyPoints << "\n";
+  os << indent << "KeyPointRadius: " << this->KeyPointRadius << "\n";
+  os << indent << "KeyPointProminence: " << this->KeyPointProminence << "\n";
+  os << indent << "InPlaneKeyPoints: " << this->InPlaneKeyPoints << "\n";
+  os << indent << "ExtremeKeyPoints: " << this->ExtremeKeyPoints << "\n";
+  os << indent << "CoverEveryCell: " << this->CoverEveryCell << "\n";
+  os << indent << "BudgetExponent: " << this->BudgetExponent << "\n";
+  os << indent << "LloydIterations: " << this->LloydIterations << "\n";
+  os << indent << "CrossCellIterations: " << this->CrossCellIterations << "\n";
+  os << indent << "InputPointSamples: " << this->InputPointSamples << "\n";
+  os << indent << "FillHoles: " << this->FillHoles << "\n";
+  os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
   os << indent << "TargetMode: "
      << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";
   os << indent << "OutputFraction: " << this->OutputFraction << "\n";

@@ -43,6 +43,25 @@
  * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
  * "NumberOfSkippedPoints" (non-finite input points ignored).
  *
+ * Modes. The steps above are the paper read literally (Mode PAPER, kept
+ * exactly to reproduce the paper). Measured against the usual downsamplers,
+ * that reading loses on every quality measure (see ASM-spec.md, last
+ * section), so the default Mode is FEATURE_PRESERVING, which keeps steps 1-5
+ * and adds, each switchable on its own: key points validated by the paper's
+ * Lemma 2 across cell borders (ValidateKeyPoints, KeyPointRadius,
+ * KeyPointProminence: where the grid cuts a smooth surface is not a
+ * feature); extremes along +-v0/+-v1 and the frame diagonals as key points
+ * (InPlaneKeyPoints: spike tips, corners); a key point placed on its extreme
+ * input point (ExtremeKeyPoints); one sample per non-empty cell first and a
+ * budget N_c ~ w_c * n_c^BudgetExponent (CoverEveryCell, BudgetExponent);
+ * connected middle clusters by Lloyd iterations with the key samples fixed,
+ * inside each cell and then across cell borders (LloydIterations,
+ * CrossCellIterations); samples placed on input points (InputPointSamples);
+ * and a bounded hole-filling pass (FillHoles, HoleFillFraction). In this
+ * mode a cluster is the set of input points nearest a sample, the count is
+ * still exactly N_s, and AKPE/MKPE are 0 when the key points sit on their
+ * extreme points. The options other than Mode are ignored in PAPER mode.
+ *
  * The output is deterministic: the same input, parameters and RandomSeed give
  * the same points in the same order whatever the number of threads.
  *
@@ -81,12 +100,159 @@ public:
     NUMBER_OF_OUTPUT_POINTS = 1 ///< N_s = NumberOfOutputPoints
   };
 
+  /// Which pipeline runs.
+  enum Modes
+  {
+    FEATURE_PRESERVING = 0, ///< the paper's pipeline with the measured fixes (default)
+    PAPER = 1               ///< the paper's pipeline read literally, to reproduce the paper
+  };
+
   /// How the per-cell weight w_c of Eq. 4 is chosen.
   enum WeightModes
   {
     UNIFORM_WEIGHT = 0,          ///< w_c = 1: output density follows input density
     SURFACE_VARIATION_WEIGHT = 1 ///< w_c = 1 + CurvatureWeight * sigma_c / mean(sigma)
   };
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING (default) or PAPER. PAPER runs the paper's pipeline
+   * exactly as read in ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING adds
+   * the fixes below, each of which can be switched off on its own. The
+   * options below the Mode are ignored in PAPER mode.
+   */
+  vtkSetClampMacro(Mode, int, FEATURE_PRESERVING, PAPER);
+  vtkGetMacro(Mode, int);
+  void SetModeToFeaturePreserving() { this->SetMode(FEATURE_PRESERVING); }
+  void SetModeToPaper() { this->SetMode(PAPER); }
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: keep a key point only when it is the extreme along its
+   * direction among all input points within KeyPointRadius, neighbouring
+   * cells included (the paper's Lemma 2 across cell borders: where the grid
+   * cuts a smooth surface is not a feature); default on.
+   */
+  vtkSetMacro(ValidateKeyPoints, bool);
+  vtkGetMacro(ValidateKeyPoints, bool);
+  vtkBooleanMacro(ValidateKeyPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: radius of the Lemma 2 test, as a fraction of the cell
+   * size, in [0.01, 1]; default 0.5.
+   */
+  vtkSetClampMacro(KeyPointRadius, double, 0.01, 1.0);
+  vtkGetMacro(KeyPointRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: least prominence of a validated key point (its height
+   * along its direction above the mean of the points within KeyPointRadius),
+   * as a fraction of that radius, in [0, 1]; default 0.05. Drops scanner
+   * noise and the tangent points of smooth curved patches.
+   */
+  vtkSetClampMacro(KeyPointProminence, double, 0.0, 1.0);
+  vtkGetMacro(KeyPointProminence, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: the extremes of a cell along +-v0 and +-v1 are key
+   * point candidates too (spike tips, scan borders), and so are the extremes
+   * along the eight diagonals +-v0 +-v1 +-v2 (corners); default on.
+   */
+  vtkSetMacro(InPlaneKeyPoints, bool);
+  vtkGetMacro(InPlaneKeyPoints, bool);
+  vtkBooleanMacro(InPlaneKeyPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: a key sample is the extreme input point of its key
+   * cluster instead of the cluster's centroid (which lands mid-crease at a
+   * corner); default on.
+   */
+  vtkSetMacro(ExtremeKeyPoints, bool);
+  vtkGetMacro(ExtremeKeyPoints, bool);
+  vtkBooleanMacro(ExtremeKeyPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: every non-empty cell gets at least one sample when
+   * N_s is at least the number of non-empty cells (else the cells of largest
+   * budget share get one each); default on.
+   */
+  vtkSetMacro(CoverEveryCell, bool);
+  vtkGetMacro(CoverEveryCell, bool);
+  vtkBooleanMacro(CoverEveryCell, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: exponent gamma of the budget N_c ~ w_c * n_c^gamma
+   * (dimensionless, in [0, 1]; the paper's Eq. 4 is gamma = 1); default 0.5,
+   * which keeps overlapping scans from taking most of the samples.
+   */
+  vtkSetClampMacro(BudgetExponent, double, 0.0, 1.0);
+  vtkGetMacro(BudgetExponent, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: Lloyd (k-means) iterations placing the non-key
+   * samples inside a cell, key samples fixed (iterations, in [0, 20]); 0
+   * uses the paper's median splits instead; default 4.
+   */
+  vtkSetClampMacro(LloydIterations, int, 0, 20);
+  vtkGetMacro(LloydIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: Lloyd iterations across cell borders after the
+   * in-cell ones (iterations, in [0, 4]); default 1.
+   */
+  vtkSetClampMacro(CrossCellIterations, int, 0, 4);
+  vtkGetMacro(CrossCellIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: each sample is the input point nearest its cluster's
+   * centre (a measured point on the surface, not a centroid inside its
+   * curvature); the input arrays are still averaged over the cluster unless
+   * SnapToInputPoints is on; default on.
+   */
+  vtkSetMacro(InputPointSamples, bool);
+  vtkGetMacro(InputPointSamples, bool);
+  vtkBooleanMacro(InputPointSamples, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: a bounded hole-filling pass (two rounds, each
+   * followed by a Lloyd step) that moves the samples whose removal costs least
+   * (at most HoleFillFraction of them per round) to the input points farthest
+   * from every sample; default on. Global: a distributed run skips it.
+   */
+  vtkSetMacro(FillHoles, bool);
+  vtkGetMacro(FillHoles, bool);
+  vtkBooleanMacro(FillHoles, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: largest fraction of the samples the hole filling
+   * moves per round, in [0, 0.5]; default 0.02.
+   */
+  vtkSetClampMacro(HoleFillFraction, double, 0.0, 0.5);
+  vtkGetMacro(HoleFillFraction, double);
+  ///@}
 
   ///@{
   /**
@@ -268,6 +434,19 @@ protected:
   /// Reports non-finite parameters; false stops the run with an empty output.
   bool CheckParameters();
 
+  int Mode = FEATURE_PRESERVING;
+  bool ValidateKeyPoints = true;
+  double KeyPointRadius = 0.5;
+  double KeyPointProminence = 0.05;
+  bool InPlaneKeyPoints = true;
+  bool ExtremeKeyPoints = true;
+  bool CoverEveryCell = true;
+  double BudgetExponent = 0.5;
+  int LloydIterations = 4;
+  int CrossCellIterations = 1;
+  bool InputPointSamples = true;
+  bool FillHoles = true;
+  double HoleFillFraction = 0.02;
   int TargetMode = OUTPUT_FRACTION;
   double OutputFraction = 0.05;
   vtkIdType NumberOfOutputPoints = 1000;

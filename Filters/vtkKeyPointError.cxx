@@ -98,6 +98,9 @@ int vtkKeyPointError::FillOutputPortInformation(int port, vtkInformation* info)
 int vtkKeyPointError::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort (ParaView's Cancel) stops one run; VTK 9.2's executive never
+  // clears the flag, so without this every later run would abort at once.
+  this->AbortExecute = 0;
   vtkPointSet* original = vtkPointSet::GetData(inputVector[0]);
   vtkPointSet* simplified = vtkPointSet::GetData(inputVector[1]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

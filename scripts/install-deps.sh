@@ -15,7 +15,9 @@ PKGS=(
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libopenmpi-dev python3-mpi4py libxt-dev
   # headless runs of pvpython / pvbatch / paraview
-  xvfb xauth
+  xvfb xauth libgl1-mesa-dri   # Xvfb + Mesa llvmpipe (software OpenGL) for the gui tests
+  # header-only CGAL: the CGAL peers of the quality benchmark (Benchmarks/)
+  libcgal-dev
 )
 
 missing=()

@@ -12,7 +12,6 @@ The plugin is looked up in this order: --plugin, $ASM_PLUGIN, then the build
 tree (build/lib/paraview-*/plugins/ASM/ASM.so next to this repository).
 """
 import argparse
-import glob
 import os
 import sys
 import time
@@ -23,18 +22,7 @@ from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYWriter
 
-REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-
-
-def find_plugin(explicit):
-    if explicit:
-        return explicit
-    if os.environ.get("ASM_PLUGIN"):
-        return os.environ["ASM_PLUGIN"]
-    found = sorted(glob.glob(os.path.join(REPO, "build", "lib", "paraview-*", "plugins", "ASM", "ASM.so")))
-    if not found:
-        sys.exit("ASM plugin not found: build first (bash scripts/build.sh) or pass --plugin")
-    return found[-1]
+from asm_plugin import REPO, find_plugin
 
 
 def write_ply(polydata, path):

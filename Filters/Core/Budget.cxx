@@ -126,4 +126,45 @@ std::vector<Index> ApportionBudget(
   }
   return budget;
 }
+
+std::vector<Index> ApportionWithCoverage(
+  const std::vector<double>& share, const std::vector<Index>& capacity, Index total, bool cover)
+{
+  if (!cover)
+  {
+    return ApportionBudget(share, capacity, total);
+  }
+  const std::size_t n = capacity.size();
+  std::vector<Index> occupied;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    if (capacity[c] > 0)
+    {
+      occupied.push_back(static_cast<Index>(c));
+    }
+  }
+  std::vector<Index> budget(n, 0);
+  if (total < static_cast<Index>(occupied.size()))
+  {
+    // Not enough for every cell: the cells of largest share.
+    std::stable_sort(occupied.begin(), occupied.end(),
+      [&](Index a, Index b) { return share[a] > share[b]; });
+    for (Index i = 0; i < std::max<Index>(0, total); ++i)
+    {
+      budget[occupied[i]] = 1;
+    }
+    return budget;
+  }
+  std::vector<Index> rest(capacity);
+  for (Index c : occupied)
+  {
+    rest[c] -= 1;
+  }
+  budget = ApportionBudget(share, rest, total - static_cast<Index>(occupied.size()));
+  for (Index c : occupied)
+  {
+    budget[c] += 1;
+  }
+  return budget;
+}
 } // namespace asmcore

@@ -19,6 +19,14 @@ namespace asmcore
 /// only receive samples once every other cell is full.
 VTKASMFILTERS_EXPORT std::vector<Index> ApportionBudget(
   const std::vector<double>& share, const std::vector<Index>& capacity, Index total);
+
+/// Budgets of the feature-preserving mode. `share` is w_c * n_c^gamma. With
+/// `cover` on and total >= the number of non-empty cells, every cell first
+/// gets one sample and the rest is apportioned by share (capacity n_c - 1);
+/// with total < cells, the `total` cells of largest share get one each (ties:
+/// lower index). With `cover` off, as ApportionBudget. Exact in total.
+VTKASMFILTERS_EXPORT std::vector<Index> ApportionWithCoverage(
+  const std::vector<double>& share, const std::vector<Index>& capacity, Index total, bool cover);
 } // namespace asmcore
 
 #endif

@@ -2,11 +2,21 @@
 /**
  * Grid hashing (paper §3.5 step 1): a uniform grid of cubic cells, the points
  * sorted by cell, and the automatic choice of the cell size.
+ *
+ * Speed: no comparison sort. Occupied cells are marked in a bitmap over the
+ * grid (parallel, lock-free) when the grid is small enough (at most
+ * max(2^26, 16 N) cells), else in a hash set; points are then placed by a
+ * counting sort (parallel blocks). The results are unique (cells ascending by
+ * key, points by id within a cell), so they do not depend on the thread
+ * count or on how the loops are cut.
  */
 #ifndef asm_core_Grid_h
 #define asm_core_Grid_h
 
 #include "Common.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace asmcore
 {
@@ -23,7 +33,8 @@ struct VTKASMFILTERS_EXPORT Bounds
 };
 
 /// Bounds of the points xyz[3*id] for id in ids.
-VTKASMFILTERS_EXPORT Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids);
+VTKASMFILTERS_EXPORT Bounds ComputeBounds(
+  const double* xyz, const std::vector<Index>& ids, const Execution& execution = {});
 
 /// A uniform grid: origin, cubic cell edge, and the number of cells per axis.
 struct VTKASMFILTERS_EXPORT GridSpec
@@ -41,7 +52,22 @@ struct VTKASMFILTERS_EXPORT GridSpec
 
   /// Packed key (z << 42 | y << 21 | x) of the cell holding p; points
   /// outside the grid are clamped to its border cells.
-  std::uint64_t KeyOf(const double p[3]) const;
+  std::uint64_t KeyOf(const double p[3]) const
+  {
+    std::uint64_t ijk[3];
+    this->CellOf(p, ijk);
+    return (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
+  }
+  /// Integer cell coordinates of the cell holding p (clamped to the grid).
+  void CellOf(const double p[3], std::uint64_t ijk[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      double t = std::floor((p[a] - this->Origin[a]) / this->CellSize);
+      t = std::min(std::max(t, 0.0), static_cast<double>(this->Dims[a] - 1));
+      ijk[a] = static_cast<std::uint64_t>(t);
+    }
+  }
   /// The integer cell coordinates of a key.
   void Unpack(std::uint64_t key, std::int64_t ijk[3]) const;
 };
@@ -60,17 +86,17 @@ struct VTKASMFILTERS_EXPORT CellGrid
 };
 
 /// Hash the points into the grid `spec` (deterministic: ties by point id).
-VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec);
+VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(const double* xyz, const std::vector<Index>& ids,
+  const GridSpec& spec, const Execution& execution = {});
 
 /// Number of non-empty cells of `spec`.
-VTKASMFILTERS_EXPORT Index CountOccupiedCells(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec);
+VTKASMFILTERS_EXPORT Index CountOccupiedCells(const double* xyz, const std::vector<Index>& ids,
+  const GridSpec& spec, const Execution& execution = {});
 
 /// The cell edge for which about `targetCells` cells are non-empty. Searches
 /// in log(cell size) with the measured occupancy, a few passes over the data.
-VTKASMFILTERS_EXPORT double AutomaticCellSize(
-  const double* xyz, const std::vector<Index>& ids, const Bounds& bounds, double targetCells);
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids,
+  const Bounds& bounds, double targetCells, const Execution& execution = {});
 
 /// The same search with the occupancy counted by `countOccupied` (e.g. the
 /// distinct non-empty cells over all processes of a distributed run).

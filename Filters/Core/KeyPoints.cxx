@@ -83,6 +83,158 @@ std::int64_t BinOf(double u, double side)
   const double lim = 4.0e18;
   return static_cast<std::int64_t>(std::max(-lim, std::min(lim, t)));
 }
+
+// The clusters of `subset` given the components of positions in `sets`.
+Clusters Components(const std::vector<Index>& subset, DisjointSets& sets)
+{
+  Clusters out;
+  const std::size_t n = subset.size();
+  // Roots are the smallest position of each component, so walking positions
+  // in order meets components in order of their first member.
+  std::vector<Index> label(n, -1);
+  std::vector<Index> counts;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Index root = sets.Find(static_cast<Index>(i));
+    if (label[root] < 0)
+    {
+      label[root] = static_cast<Index>(counts.size());
+      counts.push_back(0);
+    }
+    ++counts[label[root]];
+  }
+  out.Offsets.assign(counts.size() + 1, 0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    out.Offsets[k + 1] = out.Offsets[k] + counts[k];
+  }
+  out.Members.resize(n);
+  std::vector<Index> fill(out.Offsets.begin(), out.Offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out.Members[fill[label[sets.Find(static_cast<Index>(i))]]++] = subset[i];
+  }
+  return out;
+}
+
+// LinkInPlane when the bins touched by the points fit in a small dense
+// array (the usual band of a cell): the same links as the sorted-bin search
+// (same bin, or at most two bins apart and within d), found through the
+// array instead of binary searches (the same components). Returns false, doing nothing, when the
+// array would be too large.
+bool LinkDenseInPlane(const LocalPoints& q, const std::vector<Index>& subset, double side,
+  double d2, DisjointSets& sets)
+{
+  struct Scratch
+  {
+    std::vector<std::int64_t> X, Y;
+    std::vector<Index> Start, Order;
+  };
+  thread_local Scratch scratch; // reused by the cells a thread processes
+  const std::size_t n = subset.size();
+  scratch.X.resize(n);
+  scratch.Y.resize(n);
+  std::int64_t lo[2] = { 0, 0 }, hi[2] = { 0, 0 };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d& p = q[subset[i]];
+    const std::int64_t x = BinOf(p[0], side), y = BinOf(p[1], side);
+    scratch.X[i] = x;
+    scratch.Y[i] = y;
+    lo[0] = i == 0 ? x : std::min(lo[0], x);
+    hi[0] = i == 0 ? x : std::max(hi[0], x);
+    lo[1] = i == 0 ? y : std::min(lo[1], y);
+    hi[1] = i == 0 ? y : std::max(hi[1], y);
+  }
+  // Differences of bins far apart could overflow: test in double first.
+  const double w = static_cast<double>(hi[0]) - static_cast<double>(lo[0]) + 1.0;
+  const double h = static_cast<double>(hi[1]) - static_cast<double>(lo[1]) + 1.0;
+  if (!(w * h <= 4.0 * static_cast<double>(n) + 64.0))
+  {
+    return false;
+  }
+  const std::int64_t width = hi[0] - lo[0] + 1, height = hi[1] - lo[1] + 1;
+  // Counting sort of the positions by bin (stable).
+  scratch.Start.assign(static_cast<std::size_t>(width * height + 1), 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    scratch.X[i] -= lo[0];
+    scratch.Y[i] -= lo[1];
+    ++scratch.Start[static_cast<std::size_t>(scratch.Y[i] * width + scratch.X[i] + 1)];
+  }
+  for (std::size_t b = 1; b < scratch.Start.size(); ++b)
+  {
+    scratch.Start[b] += scratch.Start[b - 1];
+  }
+  scratch.Order.resize(n);
+  {
+    std::vector<Index>& next = scratch.Start; // shifted by one: fill, then shift back
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const auto bin = static_cast<std::size_t>(scratch.Y[i] * width + scratch.X[i]);
+      scratch.Order[static_cast<std::size_t>(next[bin]++)] = static_cast<Index>(i);
+    }
+    for (std::size_t b = next.size() - 1; b > 0; --b)
+    {
+      next[b] = next[b - 1];
+    }
+    next[0] = 0;
+  }
+  // A bin is connected (its first point joins the others); then each pair
+  // of bins at most two apart is linked by its first pair within d, unless
+  // the two bins are connected already.
+  const Index* start = scratch.Start.data();
+  const Index* order = scratch.Order.data();
+  for (std::int64_t y = 0; y < height; ++y)
+  {
+    for (std::int64_t x = 0; x < width; ++x)
+    {
+      const std::int64_t bin = y * width + x;
+      if (start[bin] == start[bin + 1])
+      {
+        continue;
+      }
+      const Index first = order[start[bin]];
+      for (Index k = start[bin] + 1; k < start[bin + 1]; ++k)
+      {
+        sets.Union(first, order[k]);
+      }
+      // The 12 neighbours after this bin: each pair of bins once.
+      for (std::int64_t dy = 0; dy <= 2 && y + dy < height; ++dy)
+      {
+        for (std::int64_t dx = -2; dx <= 2; ++dx)
+        {
+          if ((dy == 0 && dx <= 0) || x + dx < 0 || x + dx >= width)
+          {
+            continue;
+          }
+          const std::int64_t other = bin + dy * width + dx;
+          if (start[other] == start[other + 1] || sets.Find(first) == sets.Find(order[start[other]]))
+          {
+            continue;
+          }
+          bool linked = false;
+          for (Index k = start[bin]; k < start[bin + 1] && !linked; ++k)
+          {
+            const Eigen::Vector3d& p = q[subset[order[k]]];
+            for (Index m = start[other]; m < start[other + 1]; ++m)
+            {
+              const Eigen::Vector3d& r = q[subset[order[m]]];
+              const double dx2 = p[0] - r[0], dy2 = p[1] - r[1];
+              if (dx2 * dx2 + dy2 * dy2 <= d2)
+              {
+                sets.Union(order[k], order[m]);
+                linked = true;
+                break;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
 } // namespace
 
 Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, double linkDistance)
@@ -102,6 +254,13 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
   // connected; points closer than d lie at most two bins apart.
   const double side = 0.5 * linkDistance;
   const double d2 = linkDistance * linkDistance;
+  {
+    DisjointSets sets(n);
+    if (LinkDenseInPlane(q, subset, side, d2, sets))
+    {
+      return Components(subset, sets);
+    }
+  }
   std::vector<std::pair<BinKey, Index>> binned(n); // (bin, position in subset)
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -170,32 +329,7 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
       }
     }
   }
-  // Roots are the smallest position of each component, so walking positions
-  // in order meets components in order of their first member.
-  std::vector<Index> label(n, -1);
-  std::vector<Index> counts;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Index root = sets.Find(static_cast<Index>(i));
-    if (label[root] < 0)
-    {
-      label[root] = static_cast<Index>(counts.size());
-      counts.push_back(0);
-    }
-    ++counts[label[root]];
-  }
-  out.Offsets.assign(counts.size() + 1, 0);
-  for (std::size_t k = 0; k < counts.size(); ++k)
-  {
-    out.Offsets[k + 1] = out.Offsets[k] + counts[k];
-  }
-  out.Members.resize(n);
-  std::vector<Index> fill(out.Offsets.begin(), out.Offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    out.Members[fill[label[sets.Find(static_cast<Index>(i))]]++] = subset[i];
-  }
-  return out;
+  return Components(subset, sets);
 }
 
 void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out)

@@ -134,39 +134,41 @@ void Unzip(std::vector<std::pair<double, Index>>& pairs, std::vector<Index>& ids
 }
 } // namespace
 
-Neighbors::Neighbors(const double* xyz, const std::vector<Index>& ids)
+Neighbors::Neighbors(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
 {
-  this->Build(xyz, ids);
+  this->Build(xyz, ids, execution);
 }
 
-void Neighbors::Build(const double* xyz, const std::vector<Index>& ids)
+/// A range of points waiting to become a node, with its bounds.
+struct Neighbors::Task
 {
-  this->Points.clear();
-  this->Nodes.clear();
-  this->Points.resize(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    const double* p = xyz + 3 * ids[i];
-    this->Points[i] = Entry{ { p[0], p[1], p[2] }, ids[i] };
-  }
-  if (this->Points.empty())
-  {
-    return;
-  }
-  this->Nodes.reserve(static_cast<std::size_t>(4 * (this->Size() / LeafSize) + 1));
-  this->BuildNode(0, this->Size(), 0);
-}
+  Index Begin = 0;
+  Index End = 0;
+  int Depth = 0;
+  double Lo[3] = { 0, 0, 0 };
+  double Hi[3] = { 0, 0, 0 };
+  Index MinId = 0;
+};
 
-Index Neighbors::BuildNode(Index begin, Index end, int depth)
+/// A node built level by level, with its children in that order.
+struct Neighbors::Built
 {
-  const Index self = static_cast<Index>(this->Nodes.size());
-  this->Nodes.emplace_back();
-  Entry* const points = this->Points.data();
+  Node Value;
+  Index Left = -1;
+  Index Right = -1;
+};
 
-  // Bounds and smallest id of the range.
-  double lo[3] = { points[begin].P[0], points[begin].P[1], points[begin].P[2] };
-  double hi[3] = { lo[0], lo[1], lo[2] };
-  Index minId = points[begin].Id;
+namespace
+{
+// Bounds and smallest id of entries [begin, end) (not empty), into lo, hi.
+template <typename Entry>
+void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], double hi[3], Index& minId)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = hi[a] = points[begin].P[a];
+  }
+  minId = points[begin].Id;
   for (Index i = begin + 1; i < end; ++i)
   {
     for (int a = 0; a < 3; ++a)
@@ -176,39 +178,106 @@ Index Neighbors::BuildNode(Index begin, Index end, int depth)
     }
     minId = std::min(minId, points[i].Id);
   }
-  if (self == 0)
+}
+} // namespace
+
+void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+{
+  this->Points.clear();
+  this->Nodes.clear();
+  this->Points.resize(ids.size());
+  const Index n = static_cast<Index>(ids.size());
+  execution.Run(0, n, [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      const double* p = xyz + 3 * ids[i];
+      this->Points[i] = Entry{ { p[0], p[1], p[2] }, ids[i] };
+    }
+  });
+  if (this->Points.empty())
   {
-    std::copy(lo, lo + 3, this->BoxMin);
-    std::copy(hi, hi + 3, this->BoxMax);
+    return;
   }
+  Task root;
+  root.End = n;
+  RangeBounds(this->Points.data(), 0, n, root.Lo, root.Hi, root.MinId);
+  std::copy(root.Lo, root.Lo + 3, this->BoxMin);
+  std::copy(root.Hi, root.Hi + 3, this->BoxMax);
+
+  // Level by level: the tasks of a level touch disjoint ranges of Points.
+  std::vector<Built> built;
+  std::vector<Task> level = { root };
+  while (!level.empty())
+  {
+    const auto base = static_cast<Index>(built.size());
+    const auto count = static_cast<Index>(level.size());
+    built.resize(static_cast<std::size_t>(base + count));
+    std::vector<Task> children(static_cast<std::size_t>(2 * count));
+    std::vector<char> split(static_cast<std::size_t>(count), 0);
+    execution.Run(0, count, [&](Index b, Index e) {
+      for (Index t = b; t < e; ++t)
+      {
+        bool s = false;
+        this->BuildTask(level[t], built[base + t], &children[2 * t], s);
+        split[t] = s ? 1 : 0;
+      }
+    });
+    std::vector<Task> next;
+    std::vector<Index> nextParent;
+    for (Index t = 0; t < count; ++t)
+    {
+      if (split[t])
+      {
+        for (int c = 0; c < 2; ++c)
+        {
+          next.push_back(children[2 * t + c]);
+          nextParent.push_back(base + t);
+        }
+      }
+    }
+    // Children come in pairs, left first.
+    const auto nextBase = static_cast<Index>(built.size());
+    for (std::size_t k = 0; k < next.size(); k += 2)
+    {
+      built[nextParent[k]].Left = nextBase + static_cast<Index>(k);
+      built[nextParent[k]].Right = nextBase + static_cast<Index>(k) + 1;
+    }
+    level.swap(next);
+  }
+  // Depth-first layout: the left child right after its parent.
+  this->Nodes.reserve(built.size());
+  this->EmitDepthFirst(built, 0);
+}
+
+void Neighbors::BuildTask(const Task& task, Built& built, Task children[2], bool& split)
+{
+  Entry* const points = this->Points.data();
+  const Index begin = task.Begin, end = task.End;
   int axis = 0;
   for (int a = 1; a < 3; ++a)
   {
-    if (hi[a] - lo[a] > hi[axis] - lo[axis])
+    if (task.Hi[a] - task.Lo[a] > task.Hi[axis] - task.Lo[axis])
     {
       axis = a;
     }
   }
-
-  Node node;
+  Node& node = built.Value;
   node.Begin = begin;
   node.End = end;
-  node.MinId = minId;
-  if (!(hi[axis] - lo[axis] > 0.0))
+  node.MinId = task.MinId;
+  split = false;
+  if (!(task.Hi[axis] - task.Lo[axis] > 0.0))
   {
     // Coincident points: one leaf, by id, so a query can stop early.
     node.Coincident = true;
     std::sort(points + begin, points + end,
       [](const Entry& x, const Entry& y) { return x.Id < y.Id; });
-    this->Nodes[self] = node;
-    return self;
+    return;
   }
-  if (end - begin <= LeafSize || depth >= MaxDepth)
+  if (end - begin <= LeafSize || task.Depth >= MaxDepth)
   {
-    this->Nodes[self] = node;
-    return self;
+    return;
   }
-
   // Median split on (coordinate, id): the halves have equal sizes even when
   // many points share the median coordinate.
   const Index mid = begin + (end - begin) / 2;
@@ -218,14 +287,29 @@ Index Neighbors::BuildNode(Index begin, Index end, int depth)
     });
   node.Axis = axis;
   node.HighMin = points[mid].P[axis];
-  node.LowMax = points[begin].P[axis];
-  for (Index i = begin + 1; i < mid; ++i)
+  Task& left = children[0];
+  Task& right = children[1];
+  left.Begin = begin;
+  left.End = mid;
+  right.Begin = mid;
+  right.End = end;
+  left.Depth = right.Depth = task.Depth + 1;
+  RangeBounds(points, begin, mid, left.Lo, left.Hi, left.MinId);
+  RangeBounds(points, mid, end, right.Lo, right.Hi, right.MinId);
+  node.LowMax = left.Hi[axis];
+  split = true;
+}
+
+Index Neighbors::EmitDepthFirst(const std::vector<Built>& built, Index b)
+{
+  const auto self = static_cast<Index>(this->Nodes.size());
+  this->Nodes.push_back(built[b].Value);
+  if (built[b].Left >= 0)
   {
-    node.LowMax = std::max(node.LowMax, points[i].P[axis]);
+    this->EmitDepthFirst(built, built[b].Left); // self + 1
+    const Index right = this->EmitDepthFirst(built, built[b].Right);
+    this->Nodes[self].Right = right;
   }
-  this->BuildNode(begin, mid, depth + 1); // left child: self + 1
-  node.Right = this->BuildNode(mid, end, depth + 1);
-  this->Nodes[self] = node; // by index: the recursion may reallocate Nodes
   return self;
 }
 

@@ -20,8 +20,8 @@
  * first point that cannot enter the result).
  *
  * Complexity (N points, k neighbours, m points reported):
- *  - Build: O(N log N) time (a linear-time nth_element and bounds pass per
- *    level); memory: 32 N bytes of points + fewer than 4 N / LeafSize
+ *  - Build: O(N log N) time (a linear-time nth_element and one bounds pass
+ *    per level; the nodes of a level are built in parallel); memory: 32 N bytes of points + fewer than 4 N / LeafSize
  *    nodes of 56 bytes (under 39 bytes per point in all).
  *  - KNearest / Nearest: O(log N + k log k) expected for points sampled
  *    from a surface or volume; O(N log N) when k >= N (all points, sorted).
@@ -63,13 +63,15 @@ public:
 
   /// An empty tree: every query returns nothing.
   Neighbors() = default;
-  /// Same as Build(xyz, ids).
-  Neighbors(const double* xyz, const std::vector<Index>& ids);
+  /// Same as Build(xyz, ids, execution).
+  Neighbors(const double* xyz, const std::vector<Index>& ids, const Execution& execution = {});
 
   /// (Re)build the tree over the points xyz[3*id], id in ids, which must be
   /// finite (see FinitePointIds). Ids need not be sorted or contiguous;
-  /// listing an id twice makes two (coincident) entries.
-  void Build(const double* xyz, const std::vector<Index>& ids);
+  /// listing an id twice makes two (coincident) entries. The tree is built
+  /// level by level, the nodes of a level in parallel (`execution`); it is
+  /// the same whatever the thread count.
+  void Build(const double* xyz, const std::vector<Index>& ids, const Execution& execution = {});
 
   /// Number of points in the tree.
   Index Size() const { return static_cast<Index>(this->Points.size()); }
@@ -115,7 +117,10 @@ private:
     bool Coincident = false; ///< leaf: all its points coincide; sorted by id
   };
 
-  Index BuildNode(Index begin, Index end, int depth);
+  struct Task;
+  struct Built;
+  void BuildTask(const Task& task, Built& built, Task children[2], bool& split);
+  Index EmitDepthFirst(const std::vector<Built>& built, Index b);
   template <typename Result>
   void Search(const double p[3], Result& result) const;
   template <typename Result>

@@ -3,6 +3,7 @@
 
 #include "Budget.h"
 #include "CellFrame.h"
+#include "FeatureSimplify.h"
 #include "Grid.h"
 #include "KeyPoints.h"
 
@@ -141,6 +142,10 @@ std::vector<double> CellShares(const std::vector<Index>& capacity,
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
+  if (parameters.Mode == SimplifyMode::FeaturePreserving)
+  {
+    return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
+  }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
   const Index target = parameters.CellBudget
@@ -159,13 +164,13 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
   else
   {
-    const Bounds bounds = ComputeBounds(xyz, ids);
+    const Bounds bounds = ComputeBounds(xyz, ids, execution);
     double cellSize = parameters.CellSize;
     if (!(cellSize > 0.0) || !std::isfinite(cellSize))
     {
       const double targetCells =
         static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
     }
     spec = GridSpec::Make(bounds, cellSize);
   }
@@ -174,7 +179,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, spec);
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;

@@ -21,6 +21,13 @@ enum class WeightMode
   SurfaceVariation ///< w_c = 1 + CurvatureWeight * sigma_c / mean(sigma)
 };
 
+/// Which pipeline runs.
+enum class SimplifyMode
+{
+  FeaturePreserving, ///< the literal pipeline with the fixes of FeatureSimplify.h (default)
+  Paper              ///< the paper's pipeline read literally (ASM-spec.md, "Pipeline")
+};
+
 /// Parameters of one run; lengths in data units.
 struct VTKASMFILTERS_EXPORT SimplifyParameters
 {
@@ -35,6 +42,24 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool Snap = false;                       ///< samples are input points (nearest the centroid)
   double LinkFactor = 2.0;                 ///< key-cluster link distance, in mean point spacings
   double CoordinateEpsilon = DBL_EPSILON;  ///< relative precision of the input coordinates
+  SimplifyMode Mode = SimplifyMode::FeaturePreserving;
+
+  // Options of the feature-preserving mode (ignored in Paper mode); each one
+  // switches one fix off (see FeatureSimplify.h).
+  bool ValidateKeyPoints = true; ///< Lemma 2 across cell borders
+  double KeyPointRadius = 0.5;   ///< Lemma 2 radius, fraction of the cell size, in (0, 1]
+  double KeyPointProminence = 0.05; ///< least prominence of a validated key, fraction of that radius
+  bool InPlaneKeyPoints = true;  ///< extremes along +-v0/+-v1 are key points too
+  bool ExtremeKeyPoints = true;  ///< a key sample is its extreme point, not the band centroid
+  bool CoverEveryCell = true;    ///< every non-empty cell gets a sample when N_s allows
+  double BudgetExponent = 0.5;   ///< gamma of N_c ~ w_c * n_c^gamma (the paper: 1)
+  int LloydIterations = 4;       ///< inside a cell; 0: median splits of the non-key points
+  int CrossCellIterations = 1;   ///< across cell borders, clamped to MaxCrossCellIterations
+  double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
+  bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre
+  bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
+  double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
+  int HoleFillRounds = 2;         ///< rounds of hole filling, each followed by a Lloyd step
 
   /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.
   /// Every process calls Simplify on the points of the cells it owns plus a

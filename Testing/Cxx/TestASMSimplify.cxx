@@ -71,6 +71,7 @@ TEST(ASMSimplify, BunnyAtFivePercentWithArraysAndFieldData)
 {
   auto input = ReadPLY("bunny.ply");
   FilterRun run;
+  run.Filter->SetModeToPaper(); // key points are band centroids: AKPE > 0
   vtkPolyData* out = run.Execute(input);
   ASSERT_EQ(out->GetNumberOfPoints(), 1797); // round(0.05 * 35947)
   vtkPointData* pd = out->GetPointData();
@@ -173,6 +174,7 @@ TEST(ASMSimplify, AveragesInputArraysOverClusters)
   input->GetPointData()->AddArray(unnamed);
 
   FilterRun run;
+  run.Filter->SetModeToPaper(); // samples are cluster centroids (see TestFeaturePreserving)
   run.Filter->SetOutputFraction(0.1);
   vtkPolyData* out = run.Execute(input);
   ASSERT_EQ(out->GetNumberOfPoints(), 600);
@@ -283,6 +285,7 @@ TEST(ASMSimplify, SameSeedSameOutputOtherSeedOtherChoice)
   auto input = ReadPLY("fandisk.ply");
   auto run = [&](int seed) {
     FilterRun r;
+    r.Filter->SetModeToPaper(); // the random choice among key points is the paper's
     r.Filter->SetOutputFraction(0.01);
     r.Filter->SetRandomSeed(seed);
     vtkPolyData* out = r.Execute(input);
@@ -336,6 +339,11 @@ TEST(ASMSimplify, ReportsProgressAndHonoursAbort)
     const auto late = std::count_if(progress->Values.begin(), progress->Values.end(),
       [](double v) { return v > 0.5 && v < 1.0; });
     EXPECT_LE(late, 1);
+    // The abort stops that run only: the next one (after a change) completes.
+    run.Filter->RemoveObservers(vtkCommand::ProgressEvent);
+    run.Filter->SetRandomSeed(2);
+    run.Filter->Update();
+    EXPECT_EQ(run.Filter->GetOutput()->GetNumberOfPoints(), 1797);
   }
 }
 

@@ -370,6 +370,7 @@ TEST(Simplify, ErrorToleranceBoundsMKPE)
   const Cloud c = asmtest::Sphere(30000, 1.0, 11);
   const auto ids = AllIds(c);
   asmcore::SimplifyParameters p;
+  p.Mode = asmcore::SimplifyMode::Paper; // the literal pipeline's key points
   p.NumberOfSamples = 1500;
   const auto loose = asmcore::Simplify(c.data(), ids, nullptr, p);
   ASSERT_GT(loose.NumberOfKeyPoints, 0);
@@ -396,6 +397,7 @@ TEST(Simplify, RotatingTheInputRotatesTheKeyPoints)
     asmtest::Add(rotated, r[0], r[1], r[2]);
   }
   asmcore::SimplifyParameters p;
+  p.Mode = asmcore::SimplifyMode::Paper; // the literal pipeline's key points
   p.NumberOfSamples = 20;
   p.CellSize = 10.0; // one cell whatever the rotation
   const auto a = asmcore::Simplify(c.data(), ids, nullptr, p);
@@ -427,6 +429,7 @@ TEST(Simplify, RandomKeySelectionFollowsTheSeed)
   const Cloud c = asmtest::Sphere(4000, 1.0, 5);
   const auto ids = AllIds(c);
   asmcore::SimplifyParameters p;
+  p.Mode = asmcore::SimplifyMode::Paper; // the literal pipeline's key points
   p.NumberOfSamples = 1;
   p.CellSize = 10.0;
   std::set<Index> kept;

@@ -32,7 +32,7 @@ cloud = MaskPoints(Input=value, OnRatio=1, MaximumNumberofPoints=10 ** 9, Genera
                    SingleVertexPerCell=1)
 spread = RedistributeDataSet(Input=cloud)
 asm = ASMSimplify(Input=spread, TargetMode="Number Of Output Points",  # noqa: F405
-                  NumberOfOutputPoints=NS, AlwaysDistribute=1)
+                  NumberOfOutputPoints=NS, AlwaysDistribute=1, Mode="Paper")
 kpe = KeyPointError(Original=spread, Simplified=asm)  # noqa: F405
 kpe.UpdatePipeline()
 

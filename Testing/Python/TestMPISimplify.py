@@ -48,6 +48,7 @@ asm.SetInputData(piece)
 asm.SetTargetModeToNumberOfOutputPoints()
 asm.SetNumberOfOutputPoints(NS)
 asm.AlwaysDistributeOn()
+asm.SetMode(vtkASMSimplify.PAPER)  # distributed runs use the paper mode for now
 asm.Update()
 out = asm.GetOutput()
 

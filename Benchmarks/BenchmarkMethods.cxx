@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "BenchmarkMethods.h"
+
+#include "BenchmarkData.h"
+
+#include "vtkASMSimplify.h"
+#include "vtkMaskPoints.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkVoxelGrid.h"
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <utility>
+
+namespace asmbench
+{
+namespace
+{
+// vtkASMSimplify gains a mode property in the quality work (issue 7). Until
+// then the one pipeline is the paper's: detect the property at compile time
+// so that this file builds before and after it lands.
+template <typename T, typename = void>
+struct HasModes : std::false_type
+{
+};
+template <typename T>
+struct HasModes<T,
+  std::void_t<decltype(std::declval<T&>().SetModeToPaper()),
+    decltype(std::declval<T&>().SetModeToFeaturePreserving())>> : std::true_type
+{
+};
+
+template <typename T>
+bool ApplyMode(T* filter, AsmMode mode)
+{
+  if constexpr (HasModes<T>::value)
+  {
+    if (mode == AsmMode::Paper)
+    {
+      filter->SetModeToPaper();
+    }
+    else
+    {
+      filter->SetModeToFeaturePreserving();
+    }
+    return true;
+  }
+  else
+  {
+    (void)filter;
+    return mode == AsmMode::Paper;
+  }
+}
+
+double MemoryBytes(vtkDataObject* data)
+{
+  return data ? 1024.0 * static_cast<double>(data->GetActualMemorySize()) : 0.0;
+}
+
+/// Runs a configured VTK filter once, timing Update() alone.
+RunResult RunFilter(vtkAlgorithm* filter, bool keepPoints)
+{
+  filter->Modified();
+  const double start = Now();
+  filter->Update();
+  RunResult r;
+  r.Seconds = Now() - start;
+  vtkPolyData* output = vtkPolyData::SafeDownCast(filter->GetOutputDataObject(0));
+  r.Count = output ? output->GetNumberOfPoints() : 0;
+  r.OutputBytes = MemoryBytes(output);
+  if (keepPoints && output)
+  {
+    r.Xyz = Coordinates(output);
+  }
+  // Free the output now: the next run's memory should not include it.
+  filter->GetOutputDataObject(0)->Initialize();
+  return r;
+}
+} // namespace
+
+const std::vector<AsmConfig>& AsmConfigurations()
+{
+  static const std::vector<AsmConfig> table = {
+    // name                 mode                         curvature
+    { "ASM default",        AsmMode::FeaturePreserving, false },
+    { "ASM default +curv",  AsmMode::FeaturePreserving, true },
+    { "ASM paper",          AsmMode::Paper,             false },
+    { "ASM paper +curv",    AsmMode::Paper,             true },
+  };
+  return table;
+}
+
+bool AsmModeAvailable(AsmMode mode)
+{
+  vtkNew<vtkASMSimplify> probe;
+  return ApplyMode(probe.Get(), mode);
+}
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target,
+  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found,
+  int probes)
+{
+  const double slack = std::max(0.5, tolerance * static_cast<double>(target));
+  double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+  double s = initial, best = initial;
+  found = -1;
+  for (int i = 0; i < maxEvaluations; ++i)
+  {
+    const vtkIdType c = count(s);
+    if (found < 0 || std::abs(static_cast<double>(c - target)) < std::abs(static_cast<double>(found - target)))
+    {
+      found = c;
+      best = s;
+    }
+    if (std::abs(static_cast<double>(c - target)) <= slack)
+    {
+      break;
+    }
+    (c > target ? lo : hi) = s;
+    double next = c > 0 ? s * std::pow(static_cast<double>(c) / static_cast<double>(target), 1.0 / exponent)
+                        : s / 4.0;
+    if (lo > 0.0 && std::isfinite(hi))
+    {
+      if (hi / lo < 1.0 + 1e-12)
+      {
+        break;
+      }
+      if (!(next > lo && next < hi))
+      {
+        next = std::sqrt(lo * hi);
+      }
+    }
+    s = next;
+  }
+  // Counts of grids jump when cell borders cross dense features (axis-aligned
+  // faces): when still outside the tolerance, probe around the best scale.
+  const double base = best;
+  for (int j = 1; j <= probes && std::abs(static_cast<double>(found - target)) > slack; ++j)
+  {
+    const double s2 = base * (1.0 + (j % 2 ? 1.0 : -1.0) * 0.0025 * ((j + 1) / 2));
+    const vtkIdType c = count(s2);
+    if (std::abs(static_cast<double>(c - target)) < std::abs(static_cast<double>(found - target)))
+    {
+      found = c;
+      best = s2;
+    }
+  }
+  return best;
+}
+
+Method MakeAsm(vtkPolyData* input, vtkIdType target, const AsmConfig& config)
+{
+  Method m;
+  m.Name = config.Name;
+  m.IsASM = true;
+  vtkSmartPointer<vtkASMSimplify> asmFilter = vtkSmartPointer<vtkASMSimplify>::New();
+  if (!ApplyMode(asmFilter.Get(), config.Mode))
+  {
+    return m; // this mode does not exist in this build: empty Run
+  }
+  asmFilter->SetInputData(input);
+  asmFilter->SetTargetModeToNumberOfOutputPoints();
+  asmFilter->SetNumberOfOutputPoints(target);
+  asmFilter->SetGenerateCurvature(config.Curvature);
+  m.Run = [asmFilter](bool keep) { return RunFilter(asmFilter, keep); };
+  return m;
+}
+
+Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
+{
+  // vtkVoxelGrid's bins always span the bounds exactly, so its count depends
+  // only on the integer divisions: search a cubic leaf size s (divisions
+  // round(range / s)), then, when that cannot come within 1 %, move up
+  // to two divisions per axis at a time (greedy, the 124 neighbouring triples).
+  auto voxel = vtkSmartPointer<vtkVoxelGrid>::New();
+  voxel->SetInputData(input);
+  voxel->SetConfigurationStyleToManual();
+  std::map<std::array<int, 3>, vtkIdType> counts;
+  auto count = [&voxel, &counts](const std::array<int, 3>& d) {
+    const auto known = counts.find(d);
+    if (known != counts.end())
+    {
+      return known->second;
+    }
+    voxel->SetDivisions(d[0], d[1], d[2]);
+    counts[d] = RunFilter(voxel, false).Count;
+    if (std::getenv("ASM_BENCHMARK_DEBUG"))
+    {
+      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << ": " << counts[d] << "\n";
+    }
+    return counts[d];
+  };
+  double bounds[6];
+  input->GetBounds(bounds);
+  // vtkVoxelGrid allocates memory for every bin, empty or not (a bin map and
+  // the locator's offsets, 16 bytes per bin): past MaxBins it cannot reach
+  // N_s on this machine, and gives the closest count below MaxBins.
+  constexpr double MaxBins = 268435456.0; // 2^28: about 4 GB
+  auto divisions = [&bounds](double s) {
+    std::array<int, 3> d;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      double bins = 1.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        d[k] = static_cast<int>(std::max(1.0, std::min(1e6, std::round((bounds[2 * k + 1] - bounds[2 * k]) / s))));
+        bins *= d[k];
+      }
+      if (bins <= MaxBins)
+      {
+        break;
+      }
+      s *= std::cbrt(bins / MaxBins) * 1.001;
+    }
+    return d;
+  };
+  vtkIdType found = 0;
+  const double leaf = SearchScale([&](double s) { return count(divisions(s)); }, target,
+    input->GetLength() / std::sqrt(static_cast<double>(target)), 2.0, 0.01, 40, found);
+  std::array<int, 3> best = divisions(leaf);
+  const double slack = std::max(0.5, 0.01 * static_cast<double>(target));
+  auto error = [target](vtkIdType c) { return std::abs(static_cast<double>(c - target)); };
+  // (Only on inputs small enough for 124 more runs per step to be cheap.)
+  const bool cheap = input->GetNumberOfPoints() <= 2000000;
+  for (int step = 0; cheap && step < 30 && error(count(best)) > slack; ++step)
+  {
+    std::array<int, 3> next = best;
+    for (int dx = -2; dx <= 2; ++dx)
+    {
+      for (int dy = -2; dy <= 2; ++dy)
+      {
+        for (int dz = -2; dz <= 2; ++dz)
+        {
+          const std::array<int, 3> d = { std::max(1, best[0] + dx), std::max(1, best[1] + dy),
+            std::max(1, best[2] + dz) };
+          if (double(d[0]) * d[1] * d[2] <= MaxBins && error(count(d)) < error(count(next)))
+          {
+            next = d;
+          }
+        }
+      }
+    }
+    if (next == best)
+    {
+      break;
+    }
+    best = next;
+  }
+  voxel->SetDivisions(best[0], best[1], best[2]);
+  Method m;
+  m.Name = "vtkVoxelGrid";
+  m.Note = "divisions " + std::to_string(best[0]) + " x " + std::to_string(best[1]) + " x " +
+    std::to_string(best[2]);
+  m.Run = [voxel](bool keep) { return RunFilter(voxel, keep); };
+  return m;
+}
+
+Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType)
+{
+  auto mask = vtkSmartPointer<vtkMaskPoints>::New();
+  mask->SetInputData(input);
+  mask->RandomModeOn();
+  mask->SetRandomModeType(randomModeType);
+  mask->SetMaximumNumberOfPoints(target);
+  mask->SetOnRatio(1);
+  mask->GenerateVerticesOn();
+  mask->SingleVertexPerCellOn();
+  mask->SetRandomSeed(1);
+  Method m;
+  m.Name = randomModeType == 2 ? "vtkMaskPoints strat." : "vtkMaskPoints random";
+  m.Run = [mask](bool keep) { return RunFilter(mask, keep); };
+  return m;
+}
+} // namespace asmbench

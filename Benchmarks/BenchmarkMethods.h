@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The simplifiers the benchmarks compare, each configured to give (about) the
+ * same output count N_s on a given input:
+ *  - vtkASMSimplify in each configuration of AsmConfigurations() (exact count);
+ *  - vtkVoxelGrid, its cubic leaf size searched (not timed) so that its output
+ *    count is within 1 % of N_s (the closest reachable count otherwise);
+ *  - vtkMaskPoints: random sampling (Vitter, exact count) and spatially
+ *    stratified random sampling (Woodring et al.);
+ *  - when built with CGAL (ASM_BENCHMARK_HAVE_CGAL): grid_simplify_point_set
+ *    (cell size searched) and hierarchy_simplify_point_set (cluster size,
+ *    then maximum variation, searched), both within 1 % of N_s.
+ */
+#ifndef asm_BenchmarkMethods_h
+#define asm_BenchmarkMethods_h
+
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace asmbench
+{
+/// The pipeline of vtkASMSimplify.
+enum class AsmMode
+{
+  Paper,            ///< the paper's literal pipeline
+  FeaturePreserving ///< the feature-preserving default (issue 7)
+};
+
+/// One configuration of vtkASMSimplify: THE table of what is benchmarked.
+struct AsmConfig
+{
+  std::string Name;
+  AsmMode Mode;
+  bool Curvature; ///< GenerateCurvature
+};
+
+/// Both modes, curvature off and on.
+const std::vector<AsmConfig>& AsmConfigurations();
+
+/// Whether this build's vtkASMSimplify can run `mode`: PAPER always (before
+/// the Mode property exists, the one pipeline is the paper's), the others only
+/// when vtkASMSimplify has SetModeToPaper()/SetModeToFeaturePreserving().
+bool AsmModeAvailable(AsmMode mode);
+
+/// One run of a method: output count, wall time of the simplification
+/// alone (seconds), and the output's memory (bytes).
+struct RunResult
+{
+  vtkIdType Count = 0;
+  double Seconds = 0.0;
+  double OutputBytes = 0.0;
+  std::vector<double> Xyz; ///< output points, when asked for
+};
+
+/// A simplifier configured for one input and one N_s.
+struct Method
+{
+  std::string Name;
+  bool IsASM = false;
+  std::string Note; ///< how it was driven to N_s (cell size, ...)
+  /// Runs once; fills RunResult::Xyz when `keepPoints`.
+  std::function<RunResult(bool keepPoints)> Run;
+};
+
+Method MakeAsm(vtkPolyData* input, vtkIdType target, const AsmConfig& config);
+/// Leaf size searched with the real filter so that the count is within 1 % of target.
+Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target);
+/// randomModeType: 1 random sampling, 2 spatially stratified (vtkMaskPoints).
+Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType);
+
+/// Whether the CGAL peers are built in.
+bool HaveCGAL();
+/// CGAL peers (empty Run when !HaveCGAL()).
+Method MakeCgalGrid(vtkPolyData* input, vtkIdType target);
+Method MakeCgalHierarchy(vtkPolyData* input, vtkIdType target);
+
+/// Searches a scale s > 0 such that count(s) (decreasing in s, about as
+/// s^-exponent) is within `tolerance` (relative) of target; returns the best
+/// s found in at most maxEvaluations calls (and its count in `found`), then,
+/// if still outside the tolerance, up to `probes` more calls at s * (1 +/-
+/// 0.25 % k) around the best (grid counts jump, and are not monotone).
+double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target,
+  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found,
+  int probes = 0);
+
+/// Wall-clock seconds since an arbitrary origin.
+double Now();
+} // namespace asmbench
+
+#endif

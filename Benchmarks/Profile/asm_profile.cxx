@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * asm_profile: a small timing harness for optimising vtkASMSimplify (not the
+ * official benchmark, see Benchmarks/). Generates a seeded synthetic cloud
+ * (a sphere with bumps, points uniform by area, float coordinates) in memory,
+ * or reads a PLY, and times vtkASMSimplify::Update() end to end.
+ *
+ *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
+ *               [--fraction F] [--curvature] [--ply file] [--stages]
+ *               [--dump file] [--coherent]
+ *
+ * --coherent sorts the synthetic points along a Morton curve (scan-like
+ * memory order; default: random order, the worst case for gathers).
+ * --stages also times the core's stages one by one (same calls as
+ * asmcore::Simplify makes), one thread. --dump writes the output points,
+ * original ids and key flags of the last run as text (for before/after
+ * comparisons). Times: medians of wall and of process CPU time (the latter
+ * is robust to a loaded machine). Peak memory: VmHWM after resetting it (clear_refs 5) once the
+ * input exists, minus the resident size then, per input point.
+ */
+#include "Core/Budget.h"
+#include "Core/CellFrame.h"
+#include "Core/Grid.h"
+#include "Core/KeyPoints.h"
+#include "Core/Neighbors.h"
+#include "Core/Simplify.h"
+#include "vtkASMFilterUtilities.h"
+#include "vtkASMSimplify.h"
+
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <malloc.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// CPU time of the whole process (all threads): robust to a loaded machine.
+double Cpu()
+{
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+long StatusKB(const char* field)
+{
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+  {
+    if (line.rfind(field, 0) == 0)
+    {
+      return std::atol(line.c_str() + std::strlen(field));
+    }
+  }
+  return -1;
+}
+
+void ResetPeak()
+{
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+}
+
+// Sphere of radius 1 with bumps r = 1 + 0.08 sin(5 theta) cos(4 phi) + 0.03 sin(17 ...),
+// uniform by area (rejection on the area element), seeded.
+vtkSmartPointer<vtkPolyData> Synthetic(vtkIdType n, unsigned seed, bool coherent)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  auto radius = [](double t, double p) {
+    return 1.0 + 0.08 * std::sin(5 * t) * std::cos(4 * p) + 0.03 * std::sin(17 * t + 3 * p);
+  };
+  vtkNew<vtkFloatArray> data;
+  data->SetNumberOfComponents(3);
+  data->SetNumberOfTuples(n);
+  float* out = data->GetPointer(0);
+  vtkIdType made = 0;
+  while (made < n)
+  {
+    const double z = 2.0 * uni(rng) - 1.0;
+    const double p = 2.0 * M_PI * uni(rng);
+    const double t = std::acos(z);
+    const double r = radius(t, p);
+    // Area element of r(t, p) relative to the unit sphere, roughly bounded by 1.6.
+    const double h = 1e-5;
+    const double rt = (radius(t + h, p) - radius(t - h, p)) / (2 * h);
+    const double rp = (radius(t, p + h) - radius(t, p - h)) / (2 * h);
+    const double s = std::max(std::sin(t), 1e-12);
+    const double w = r * std::sqrt(r * r + rt * rt + rp * rp / (s * s)) / 1.6;
+    if (uni(rng) > w)
+    {
+      continue;
+    }
+    const double st = std::sqrt(std::max(0.0, 1.0 - z * z));
+    out[3 * made] = static_cast<float>(r * st * std::cos(p));
+    out[3 * made + 1] = static_cast<float>(r * st * std::sin(p));
+    out[3 * made + 2] = static_cast<float>(r * z);
+    ++made;
+  }
+  if (coherent)
+  {
+    // Scan-like order: points sorted along a Morton curve of a 1024^3 grid.
+    std::vector<std::pair<std::uint64_t, vtkIdType>> order(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      std::uint64_t code = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const auto q = static_cast<std::uint64_t>((out[3 * i + a] + 1.2) / 2.4 * 1023.0);
+        for (int b = 0; b < 10; ++b)
+          code |= ((q >> b) & 1) << (3 * b + a);
+      }
+      order[i] = { code, i };
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<float> sorted(3 * n);
+    for (vtkIdType i = 0; i < n; ++i)
+      std::copy(out + 3 * order[i].second, out + 3 * order[i].second + 3, &sorted[3 * i]);
+    std::copy(sorted.begin(), sorted.end(), out);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetData(data);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  return poly;
+}
+
+std::vector<long> ParseList(const char* s)
+{
+  std::vector<long> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+  {
+    double x = std::atof(item.c_str());
+    if (!item.empty() && (item.back() == 'k' || item.back() == 'K'))
+      x *= 1e3;
+    if (!item.empty() && (item.back() == 'M' || item.back() == 'm'))
+      x *= 1e6;
+    v.push_back(static_cast<long>(x));
+  }
+  return v;
+}
+
+// The core's stages one by one, one thread (mirrors asmcore::Simplify).
+void TimeStages(vtkPolyData* input, double fraction)
+{
+  using namespace asmcore;
+  double t0 = Cpu();
+  std::unique_ptr<double[]> copy;
+  std::vector<Index> ids;
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, ids);
+  double t1 = Cpu();
+  double t2 = Cpu();
+  const Index target = static_cast<Index>(std::llround(fraction * ids.size()));
+  const Bounds bounds = ComputeBounds(xyz, ids);
+  double t3 = Cpu();
+  const double cellSize = AutomaticCellSize(xyz, ids, bounds, target / 8.0);
+  double t4 = Cpu();
+  double best = 1e9;
+  for (int r = 0; r < 7; ++r)
+  {
+    const double c0 = Cpu();
+    CountOccupiedCells(xyz, ids, GridSpec::Make(bounds, cellSize));
+    best = std::min(best, Cpu() - c0);
+  }
+  std::printf("    (one occupancy count, best of 7: %.1f ms)\n", 1e3 * best);
+  t4 = Cpu();
+  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  double t5 = Cpu();
+  const Index cells = grid.NumberOfCells();
+  std::vector<CellFrame> frames(cells);
+  for (Index c = 0; c < cells; ++c)
+    frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+  double t6 = Cpu();
+  std::vector<double> share(cells);
+  std::vector<Index> capacity(cells);
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    share[c] = double(capacity[c]);
+  }
+  const std::vector<Index> budget = ApportionBudget(share, capacity, target);
+  double t7 = Cpu();
+  KeyPointRule rule;
+  rule.CoordinateEpsilon = 1.2e-7;
+  LocalPoints q;
+  Index keys = 0;
+  for (Index c = 0; c < cells; ++c)
+  {
+    KeyClusters kc = FindCellKeyClusters(xyz, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], rule, q);
+    keys += kc.Key.Size();
+  }
+  double t8 = Cpu();
+  std::printf("  stages (1 thread, %lld points, %lld cells, %lld key clusters):\n",
+    (long long)ids.size(), (long long)cells, (long long)keys);
+  std::printf("    coordinates + finite ids %6.1f ms\n", 1e3 * (t1 - t0));
+  std::printf("    finite ids             %8.1f ms\n", 1e3 * (t2 - t1));
+  std::printf("    bounds                 %8.1f ms\n", 1e3 * (t3 - t2));
+  std::printf("    automatic cell size    %8.1f ms\n", 1e3 * (t4 - t3));
+  std::printf("    grid (hash + sort)     %8.1f ms\n", 1e3 * (t5 - t4));
+  std::printf("    PCA per cell           %8.1f ms\n", 1e3 * (t6 - t5));
+  std::printf("    budgets                %8.1f ms\n", 1e3 * (t7 - t6));
+  std::printf("    key clusters (local frame, partition, link) %8.1f ms\n", 1e3 * (t8 - t7));
+  std::printf("    (sampling, assembly, output arrays: the rest of the end-to-end time)\n");
+  // Share of asmcore::Simplify's CPU time spent inside Execution loops (what
+  // a second thread can share): an Amdahl bound robust to a loaded machine.
+  {
+    double inside = 0.0;
+    asmcore::Execution counting;
+    counting.For = [&inside](Index b, Index e, const std::function<void(Index, Index)>& body) {
+      const double c0 = Cpu();
+      body(b, e);
+      inside += Cpu() - c0;
+    };
+    SimplifyParameters parameters;
+    parameters.NumberOfSamples = target;
+    parameters.CoordinateEpsilon = 1.2e-7;
+    const double c0 = Cpu();
+    const SimplifyResult result = Simplify(xyz, ids, nullptr, parameters, counting);
+    const double total = Cpu() - c0;
+    std::printf("    asmcore::Simplify %.1f ms, %.1f %% of it in parallel loops: 2-thread bound %.2fx\n",
+      1e3 * total, 100.0 * inside / total, 1.0 / ((total - inside) / total + 0.5 * inside / total));
+  }
+  double kd = 1e9;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t9 = Cpu();
+    Neighbors tree(xyz, ids);
+    kd = std::min(kd, Cpu() - t9);
+  }
+  std::printf("    kd-tree build (curvature), best of 3 %8.1f ms\n", 1e3 * kd);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<long> sizes = { 1000000 };
+  std::vector<long> threads = { 1 };
+  int runs = 3;
+  double fraction = 0.05;
+  bool curvature = false, stages = false, coherent = false;
+  const char* ply = nullptr;
+  const char* dump = nullptr;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const char* next = i + 1 < argc ? argv[i + 1] : "";
+    if (a == "--points")
+      sizes = ParseList(next), ++i;
+    else if (a == "--threads")
+      threads = ParseList(next), ++i;
+    else if (a == "--runs")
+      runs = std::atoi(next), ++i;
+    else if (a == "--fraction")
+      fraction = std::atof(next), ++i;
+    else if (a == "--ply")
+      ply = next, ++i;
+    else if (a == "--dump")
+      dump = next, ++i;
+    else if (a == "--curvature")
+      curvature = true;
+    else if (a == "--coherent")
+      coherent = true;
+    else if (a == "--stages")
+      stages = true;
+    else
+    {
+      std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
+      return 2;
+    }
+  }
+  if (ply)
+    sizes = { 0 };
+  vtkSMPTools::SetBackend("STDThread");
+  std::printf("%10s %7s %9s %10s %9s %10s %9s %12s %10s\n", "points", "threads", "curvature",
+    "wall s", "Mpts/s", "cpu s", "Mpts/cpu", "peak B/pt", "output");
+  for (long n : sizes)
+  {
+    vtkSmartPointer<vtkPolyData> input;
+    if (ply)
+    {
+      vtkNew<vtkPLYReader> reader;
+      reader->SetFileName(ply);
+      reader->Update();
+      input = reader->GetOutput();
+    }
+    else
+    {
+      input = Synthetic(n, 42, coherent);
+    }
+    const vtkIdType np = input->GetNumberOfPoints();
+    if (stages)
+      TimeStages(input, fraction);
+    for (long t : threads)
+    {
+      vtkSMPTools::Initialize(static_cast<int>(t));
+      std::vector<double> times, cpu;
+      double peak = 0.0;
+      vtkIdType outCount = 0;
+      for (int r = 0; r < runs; ++r)
+      {
+        vtkNew<vtkASMSimplify> filter;
+        filter->SetInputData(input);
+        filter->SetOutputFraction(fraction);
+        filter->SetGenerateCurvature(curvature);
+        malloc_trim(0);
+        ResetPeak();
+        const long base = StatusKB("VmRSS:");
+        const double start = Now(), cpuStart = Cpu();
+        filter->Update();
+        times.push_back(Now() - start);
+        cpu.push_back(Cpu() - cpuStart);
+        const long hwm = StatusKB("VmHWM:");
+        peak = std::max(peak, 1024.0 * double(hwm - base) / double(np));
+        vtkPolyData* out = filter->GetOutput();
+        outCount = out->GetNumberOfPoints();
+        if (dump && r == runs - 1)
+        {
+          std::FILE* f = std::fopen(dump, "w");
+          vtkDataArray* oid = out->GetPointData()->GetArray("vtkOriginalPointIds");
+          vtkDataArray* key = out->GetPointData()->GetArray("KeyPoint");
+          vtkDataArray* mc = out->GetPointData()->GetArray("MeanCurvature");
+          for (vtkIdType i = 0; i < outCount; ++i)
+          {
+            double p[3];
+            out->GetPoint(i, p);
+            std::fprintf(f, "%.9g %.9g %.9g %lld %d", p[0], p[1], p[2],
+              (long long)oid->GetTuple1(i), int(key->GetTuple1(i)));
+            if (mc)
+              std::fprintf(f, " %.12g", mc->GetTuple1(i));
+            std::fprintf(f, "\n");
+          }
+          std::fclose(f);
+        }
+      }
+      const double med = Median(times);
+      const double medCpu = Median(cpu);
+      std::printf("%10lld %7ld %9s %10.4f %9.2f %10.4f %9.2f %12.1f %10lld\n", (long long)np, t,
+        curvature ? "on" : "off", med, np / med / 1e6, medCpu, np / medCpu / 1e6, peak,
+        (long long)outCount);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

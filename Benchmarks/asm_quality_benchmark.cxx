@@ -1,0 +1,319 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * asm_quality_benchmark: scores vtkASMSimplify's modes against the usual
+ * downsamplers at the same output count (issue 7). See QualityMetrics.h for
+ * the measures (all in per mille of the input's bounding-box diagonal).
+ *
+ *   asm_quality_benchmark [--fractions 0.01,0.05,0.2] [--inputs spec,...]
+ *                         [--quick] [--markdown] [more inputs ...]
+ *
+ * An input is a .ply path or a synthetic shape "spikes:100k",
+ * "bracket:100k", "terrain:100k" (with known feature points) or "bumps:1M".
+ * Default inputs: the bundled scans (Testing/Data) and the three synthetic
+ * shapes at 100 k points; inputs named on the command line are added (an
+ * input whose name is already in the list is skipped).
+ */
+#include "BenchmarkData.h"
+#include "BenchmarkMethods.h"
+#include "BenchmarkReport.h"
+#include "QualityMetrics.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <iostream>
+#include <map>
+#include <set>
+
+using namespace asmbench;
+
+namespace
+{
+/// The measures, in column order: name, accessor, whether only for shapes with features.
+struct Measure
+{
+  const char* Name;
+  double (*Get)(const Quality&);
+  bool Tips;
+};
+const std::vector<Measure>& Measures()
+{
+  static const std::vector<Measure> m = {
+    { "p2plane mean", [](const Quality& q) { return q.PlaneMean; }, false },
+    { "p2plane max", [](const Quality& q) { return q.PlaneMax; }, false },
+    { "NN RMS", [](const Quality& q) { return q.NNRms; }, false },
+    { "hole", [](const Quality& q) { return q.Hole; }, false },
+    { "tip mean", [](const Quality& q) { return q.TipMean; }, true },
+    { "tip max", [](const Quality& q) { return q.TipMax; }, true },
+  };
+  return m;
+}
+
+struct Row
+{
+  std::string Method;
+  bool IsASM = false;
+  vtkIdType Count = 0;
+  double Seconds = 0.0;
+  Quality Q;
+};
+
+/// Per ASM configuration and measure: ratios to the best peer, and wins.
+struct Tally
+{
+  std::map<std::string, std::vector<double>> Ratios; ///< measure -> ratios
+  std::map<std::string, int> Wins;                   ///< measure -> cases where ratio <= 1
+  std::map<std::string, int> Cases;
+  int HoleNotWorseThanVoxel = 0;
+  int HoleCases = 0;
+};
+
+void Usage()
+{
+  std::cout << "usage: asm_quality_benchmark [--fractions 0.01,0.05,0.2] [--inputs spec,...]\n"
+               "                             [--quick] [--markdown] [input ...]\n"
+               "input: a .ply path, or spikes:100k, bracket:100k, terrain:100k, bumps:1M\n";
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<std::string> inputs;
+  for (const char* scan : { "bunny", "fandisk", "kitten", "laurana" })
+  {
+    inputs.push_back(std::string(ASM_BENCHMARK_DATA_DIR) + "/" + scan + ".ply");
+  }
+  for (const char* shape : { "spikes:100k", "bracket:100k", "terrain:100k" })
+  {
+    inputs.push_back(shape);
+  }
+  std::vector<double> fractions = { 0.01, 0.05, 0.2 };
+  bool markdown = false;
+  std::vector<std::string> extra;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h")
+    {
+      Usage();
+      return 0;
+    }
+    else if (arg == "--quick")
+    {
+      inputs = { std::string(ASM_BENCHMARK_DATA_DIR) + "/kitten.ply", "spikes:20k" };
+      fractions = { 0.05 };
+    }
+    else if (arg == "--markdown")
+    {
+      markdown = true;
+    }
+    else if ((arg == "--fractions" || arg == "--inputs") && i + 1 < argc)
+    {
+      const std::vector<std::string> items = SplitList(argv[++i]);
+      if (arg == "--inputs")
+      {
+        inputs = items;
+      }
+      else
+      {
+        fractions.clear();
+        for (const auto& f : items)
+        {
+          fractions.push_back(std::atof(f.c_str()));
+        }
+      }
+    }
+    else if (arg.compare(0, 2, "--") == 0)
+    {
+      Usage();
+      return 2;
+    }
+    else
+    {
+      extra.push_back(arg);
+    }
+  }
+  inputs.insert(inputs.end(), extra.begin(), extra.end());
+
+  vtkSMPTools::SetBackend("STDThread");
+  std::vector<AsmConfig> configs;
+  for (const AsmConfig& c : AsmConfigurations())
+  {
+    if (!c.Curvature && AsmModeAvailable(c.Mode)) // curvature does not move points
+    {
+      configs.push_back(c);
+    }
+  }
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
+  std::cout << "# asm_quality_benchmark, " << date << ", " << vtkSMPTools::GetEstimatedNumberOfThreads()
+            << " thread(s); CGAL peers: " << (HaveCGAL() ? "yes" : "no (not built)")
+            << "; ASM modes: " << configs.size() << "\n"
+            << "# distances in per mille of the input's bounding-box diagonal; p2plane: original"
+               " points to a plane fitted to their 8 nearest samples; NN RMS: sqrt of the mean of"
+               " both directions' mean squares; hole: max distance original -> nearest sample;"
+               " tip: known feature point -> nearest sample\n";
+
+  std::map<std::string, Tally> tallies;
+  // One line per ASM configuration, input and fraction: its ratios to the best peer.
+  std::vector<std::string> ratioHeader = { "ASM mode", "input", "N_s" };
+  for (const Measure& measure : Measures())
+  {
+    ratioHeader.push_back(measure.Name);
+  }
+  ratioHeader.push_back("hole / vtkVoxelGrid");
+  Table ratios(ratioHeader);
+  std::set<std::string> seen;
+  for (const std::string& spec : inputs)
+  {
+    Input input = MakeInput(spec);
+    if (!input.Data || seen.count(input.Name))
+    {
+      continue;
+    }
+    seen.insert(input.Name);
+    const vtkIdType n = input.NumberOfPoints();
+    const Reference reference(Coordinates(input.Data), input.Features);
+    for (double fraction : fractions)
+    {
+      const vtkIdType target = std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
+      std::vector<Method> methods;
+      for (const AsmConfig& c : configs)
+      {
+        methods.push_back(MakeAsm(input.Data, target, c));
+      }
+      methods.push_back(MakeVoxelGrid(input.Data, target));
+      methods.push_back(MakeMaskPoints(input.Data, target, 1));
+      methods.push_back(MakeMaskPoints(input.Data, target, 2));
+      if (HaveCGAL())
+      {
+        methods.push_back(MakeCgalGrid(input.Data, target));
+        methods.push_back(MakeCgalHierarchy(input.Data, target));
+      }
+      std::vector<Row> rows;
+      for (const Method& m : methods)
+      {
+        if (!m.Run)
+        {
+          continue;
+        }
+        const RunResult r = m.Run(true);
+        rows.push_back({ m.Name, m.IsASM, r.Count, r.Seconds, reference.Measure(r.Xyz) });
+      }
+      const bool tips = !input.Features.empty();
+      std::vector<std::string> header = { "method", "N_s", "time s" };
+      for (const Measure& measure : Measures())
+      {
+        if (tips || !measure.Tips)
+        {
+          header.push_back(measure.Name);
+        }
+      }
+      Table table(header);
+      for (const Row& row : rows)
+      {
+        // "*": the method could not be driven within 1 % of N_s.
+        const bool off = std::abs(static_cast<double>(row.Count - target)) > std::max(0.5, 0.01 * target);
+        std::vector<std::string> cells = { row.Method, std::to_string(row.Count) + (off ? "*" : ""),
+          Format(row.Seconds, 3) };
+        for (const Measure& measure : Measures())
+        {
+          if (tips || !measure.Tips)
+          {
+            cells.push_back(Fixed(1000.0 * measure.Get(row.Q), 3));
+          }
+        }
+        table.Add(cells);
+      }
+      // Ratio of each ASM configuration to the best peer, per measure.
+      const Row* voxel = nullptr;
+      for (const Row& row : rows)
+      {
+        voxel = row.Method == "vtkVoxelGrid" ? &row : voxel;
+      }
+      for (const Row& row : rows)
+      {
+        if (!row.IsASM)
+        {
+          continue;
+        }
+        Tally& tally = tallies[row.Method];
+        std::vector<std::string> cells = { row.Method + " / best peer", "", "" };
+        std::vector<std::string> compact = { row.Method, input.Name, Format(100.0 * fraction, 3) + " %" };
+        for (const Measure& measure : Measures())
+        {
+          if (!tips && measure.Tips)
+          {
+            compact.push_back("");
+            continue;
+          }
+          double best = INFINITY;
+          for (const Row& peer : rows)
+          {
+            if (!peer.IsASM)
+            {
+              best = std::min(best, measure.Get(peer.Q));
+            }
+          }
+          const double value = measure.Get(row.Q);
+          const double ratio = best > 0.0 ? value / best : (value > 0.0 ? INFINITY : 1.0);
+          cells.push_back(Fixed(ratio, 2));
+          compact.push_back(Fixed(ratio, 2));
+          tally.Ratios[measure.Name].push_back(ratio);
+          tally.Wins[measure.Name] += ratio <= 1.0 ? 1 : 0;
+          tally.Cases[measure.Name] += 1;
+        }
+        if (voxel)
+        {
+          tally.HoleNotWorseThanVoxel += row.Q.Hole <= voxel->Q.Hole ? 1 : 0;
+          tally.HoleCases += 1;
+        }
+        compact.push_back(voxel && voxel->Q.Hole > 0.0 ? Fixed(row.Q.Hole / voxel->Q.Hole, 2) : "-");
+        ratios.Add(compact);
+        table.Add(cells);
+      }
+      std::cout << "\n## " << input.Name << ": N = " << n << ", N_s = " << target << " ("
+                << Format(100.0 * fraction, 3) << " %)\n\n";
+      table.Print(std::cout, markdown);
+    }
+  }
+
+  std::cout << "\n## Ratios: ASM / best peer per input (< 1: ASM better than every peer)\n\n";
+  ratios.Print(std::cout, markdown);
+
+  // Summary: per ASM configuration and measure, the cases where it is not
+  // worse than the best peer, and the median ratio.
+  std::cout << "\n## Summary: ASM / best peer over all inputs and fractions (median ratio; cases"
+               " where ASM <= best peer)\n\n";
+  std::vector<std::string> header = { "ASM mode" };
+  for (const Measure& measure : Measures())
+  {
+    header.push_back(measure.Name);
+  }
+  header.push_back("hole <= vtkVoxelGrid");
+  Table summary(header);
+  for (const AsmConfig& c : configs)
+  {
+    const Tally& tally = tallies[c.Name];
+    std::vector<std::string> cells = { c.Name };
+    for (const Measure& measure : Measures())
+    {
+      const auto ratios = tally.Ratios.find(measure.Name);
+      if (ratios == tally.Ratios.end())
+      {
+        cells.push_back("-");
+        continue;
+      }
+      cells.push_back("x" + Fixed(Median(ratios->second), 2) + " (" +
+        std::to_string(tally.Wins.at(measure.Name)) + "/" + std::to_string(tally.Cases.at(measure.Name)) + ")");
+    }
+    cells.push_back(std::to_string(tally.HoleNotWorseThanVoxel) + "/" + std::to_string(tally.HoleCases));
+    summary.Add(cells);
+  }
+  summary.Print(std::cout, markdown);
+  return 0;
+}

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Neighbouring grid cells: for every non-empty cell, the indices of the
+ * non-empty cells of its 3 x 3 x 3 block (itself included), found by binary
+ * search in the sorted cell keys. Used by every cross-cell step of the
+ * feature-preserving mode (Lemma 2 across cell borders, Lloyd iterations
+ * across cell borders), none of which looks farther than one ring of cells
+ * per step (see InfluenceRings in FeatureSimplify.h).
+ */
+#ifndef asm_core_CellNeighbors_h
+#define asm_core_CellNeighbors_h
+
+#include "Grid.h"
+
+namespace asmcore
+{
+/// The 27 cells around each non-empty cell: entry 27 * c + k, k = (dz + 1) * 9
+/// + (dy + 1) * 3 + (dx + 1), is the index of the non-empty cell at offset
+/// (dx, dy, dz) from c, or -1 (empty or outside the grid). Entry 13 is c.
+struct VTKASMFILTERS_EXPORT CellNeighborTable
+{
+  std::vector<Index> Cells;
+  const Index* Of(Index c) const { return this->Cells.data() + 27 * c; }
+};
+
+/// Build the table for `grid` (runs over cells through `execution`).
+VTKASMFILTERS_EXPORT CellNeighborTable BuildCellNeighbors(
+  const CellGrid& grid, const Execution& execution = {});
+
+/// Squared distance from p to the box of the cell with key `key` (0 inside).
+VTKASMFILTERS_EXPORT double SquaredDistanceToCell(
+  const GridSpec& spec, std::uint64_t key, const double p[3]);
+} // namespace asmcore
+
+#endif

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "FeatureKeyPoints.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace asmcore
+{
+bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  Index c, Index id, const double d[3], double radius, double& prominence)
+{
+  const double* p = xyz + 3 * id;
+  const double r = std::min(radius, grid.Spec.CellSize);
+  const double r2 = r * r;
+  const double height = d[0] * p[0] + d[1] * p[1] + d[2] * p[2];
+  double sum = 0.0;
+  Index count = 0;
+  const Index* ring = neighbors.Of(c);
+  // The neighbours first, the own cell (where the candidate is the extreme
+  // already) last: grid-cut candidates fall quickly.
+  for (int step = 0; step < 27; ++step)
+  {
+    const int k = step < 13 ? step : (step < 26 ? step + 1 : 13);
+    const Index n = ring[k];
+    if (n < 0 || (k != 13 && SquaredDistanceToCell(grid.Spec, grid.CellKey[n], p) > r2))
+    {
+      continue;
+    }
+    const Index* points = grid.CellPoints(n);
+    const Index size = grid.CellSizeOf(n);
+    for (Index i = 0; i < size; ++i)
+    {
+      const double* x = xyz + 3 * points[i];
+      const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
+      if (dx * dx + dy * dy + dz * dz > r2)
+      {
+        continue;
+      }
+      const double h = d[0] * x[0] + d[1] * x[1] + d[2] * x[2];
+      if (h > height)
+      {
+        return false;
+      }
+      sum += h;
+      ++count;
+    }
+  }
+  prominence = count > 0 ? height - sum / static_cast<double>(count) : 0.0;
+  return true;
+}
+
+std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
+  const FeatureKeyOptions& options, LocalPoints& q)
+{
+  std::vector<FeatureKey> keys;
+  const Index* points = grid.CellPoints(c);
+  const Index n = grid.CellSizeOf(c);
+  if (n < 3)
+  {
+    return keys; // too few points for a frame: coverage handles them
+  }
+  const KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, options.Rule, q);
+  if (kc.Flat)
+  {
+    return keys;
+  }
+  auto consider = [&](Index local, const Eigen::Vector3d& direction, const Eigen::Vector3d* centroid) {
+    const Index id = points[local];
+    for (const FeatureKey& k : keys)
+    {
+      if (k.Point == id)
+      {
+        return;
+      }
+    }
+    FeatureKey key;
+    key.Point = id;
+    const double d[3] = { direction[0], direction[1], direction[2] };
+    if (options.Validate)
+    {
+      if (!IsLocalExtreme(xyz, grid, neighbors, c, id, d, options.Radius, key.Prominence) ||
+        !(key.Prominence > options.MinimumProminence))
+      {
+        return;
+      }
+    }
+    else
+    {
+      key.Prominence = direction.dot(frame.Axes * q[local]);
+    }
+    const double* p = xyz + 3 * id;
+    if (centroid && !options.ExtremeRepresentative)
+    {
+      const Eigen::Vector3d world = frame.Centroid + frame.Axes * (*centroid);
+      for (int a = 0; a < 3; ++a)
+      {
+        key.Position[a] = world[a];
+      }
+      key.Error = (*centroid - q[local]).norm();
+    }
+    else
+    {
+      std::copy(p, p + 3, key.Position);
+    }
+    keys.push_back(key);
+  };
+  // +-v2: the extreme point of every band cluster.
+  for (Index k = 0; k < kc.Key.Size(); ++k)
+  {
+    const Eigen::Vector3d dir = (k < kc.NumberOfTop ? 1.0 : -1.0) * frame.Axes.col(2);
+    const Eigen::Vector3d local = options.Rule.Snap
+      ? Representative(q, kc.Key.Begin(k), kc.Key.End(k), true)
+      : Centroid(q, kc.Key.Begin(k), kc.Key.End(k));
+    consider(kc.Extreme[k], dir, &local);
+  }
+  // +-v0, +-v1 (tips, scan borders) and the eight diagonals +-v0 +-v1 +-v2
+  // (corners, whatever their orientation in the frame): the cell's extreme
+  // point along each.
+  if (options.InPlaneExtremes)
+  {
+    static const double directions[12][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 },
+      { 1, 1, 1 }, { 1, 1, -1 }, { 1, -1, 1 }, { 1, -1, -1 }, { -1, 1, 1 }, { -1, 1, -1 },
+      { -1, -1, 1 }, { -1, -1, -1 } };
+    for (const auto& dir : directions)
+    {
+      const Eigen::Vector3d local = Eigen::Vector3d(dir[0], dir[1], dir[2]).normalized();
+      Index best = 0;
+      double bestH = local.dot(q[0]);
+      for (Index i = 1; i < n; ++i)
+      {
+        const double h = local.dot(q[i]);
+        if (h > bestH)
+        {
+          bestH = h;
+          best = i;
+        }
+      }
+      consider(best, frame.Axes * local, nullptr);
+    }
+  }
+  std::sort(keys.begin(), keys.end(), [](const FeatureKey& a, const FeatureKey& b) {
+    return a.Prominence > b.Prominence || (a.Prominence == b.Prominence && a.Point < b.Point);
+  });
+  return keys;
+}
+} // namespace asmcore

@@ -1,0 +1,395 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "FeatureSimplify.h"
+
+#include "Budget.h"
+#include "CellFrame.h"
+#include "CellNeighbors.h"
+#include "FeatureKeyPoints.h"
+#include "Grid.h"
+#include "HoleFilling.h"
+#include "Lloyd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace asmcore
+{
+namespace
+{
+int CrossIterations(const SimplifyParameters& p)
+{
+  return std::max(0, std::min(MaxCrossCellIterations, p.CrossCellIterations));
+}
+
+// Per-sample facts besides the position.
+struct SampleInfo
+{
+  Index Owner = -1;     // grid cell whose frame gives the normal
+  Index KeyPoint = -1;  // key samples: the extreme input point
+  double KeyError = 0.0;
+};
+
+// Every sample gets at least one member when its ring has a point to spare:
+// the nearest point of a cluster with two or more members moves to it.
+void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, const std::vector<SampleInfo>& info, std::vector<Index>& assign,
+  std::vector<double>& distance2, std::vector<Index>& count)
+{
+  for (Index s = 0; s < samples.Size(); ++s)
+  {
+    if (count[s] > 0)
+    {
+      continue;
+    }
+    const double* p = samples.Position.data() + 3 * s;
+    const Index* ring = neighbors.Of(info[s].Owner);
+    Index best = -1;
+    double bestD = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 27; ++k)
+    {
+      const Index nb = ring[k];
+      for (Index i = nb < 0 ? 0 : grid.CellStart[nb]; nb >= 0 && i < grid.CellStart[nb + 1]; ++i)
+      {
+        if (assign[i] >= 0 && count[assign[i]] < 2)
+        {
+          continue;
+        }
+        const double* x = xyz + 3 * grid.Order[i];
+        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+          (x[2] - p[2]) * (x[2] - p[2]);
+        if (d < bestD)
+        {
+          bestD = d;
+          best = i;
+        }
+      }
+    }
+    if (best >= 0)
+    {
+      if (assign[best] >= 0)
+      {
+        --count[assign[best]];
+      }
+      assign[best] = s;
+      distance2[best] = bestD;
+      ++count[s];
+    }
+  }
+}
+} // namespace
+
+int InfluenceRingsOf(const SimplifyParameters& parameters)
+{
+  return 1 + 2 * CrossIterations(parameters) + 2;
+}
+
+SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<Index>& ids,
+  const double* normals, const SimplifyParameters& parameters, const Execution& execution)
+{
+  SimplifyResult result;
+  const Index total = static_cast<Index>(ids.size());
+  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  if (total == 0 || target == 0)
+  {
+    return result;
+  }
+  auto abort = [&](double fraction) {
+    if (execution.Report(fraction))
+    {
+      result = SimplifyResult();
+      result.Aborted = true;
+      return true;
+    }
+    return false;
+  };
+
+  // 1. Grid.
+  const Bounds bounds = ComputeBounds(xyz, ids);
+  double cellSize = parameters.CellSize;
+  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  {
+    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells);
+  }
+  if (abort(0.1))
+  {
+    return result;
+  }
+  const CellGrid original = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize));
+  // Every later pass reads the points cell by cell: a copy in cell order
+  // (slot i holds point original.Order[i]) keeps those reads sequential.
+  std::vector<double> cellOrdered(static_cast<std::size_t>(3 * total));
+  execution.Run(0, total, [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      std::copy(xyz + 3 * original.Order[i], xyz + 3 * original.Order[i] + 3, &cellOrdered[3 * i]);
+    }
+  });
+  const double* P = cellOrdered.data();
+  CellGrid grid;
+  grid.Spec = original.Spec;
+  grid.CellStart = original.CellStart;
+  grid.CellKey = original.CellKey;
+  grid.Order.resize(static_cast<std::size_t>(total));
+  std::iota(grid.Order.begin(), grid.Order.end(), Index(0));
+  const Index cells = grid.NumberOfCells();
+  const double h = grid.Spec.CellSize;
+  result.CellSize = h;
+  result.NumberOfCells = cells;
+  const CellNeighborTable neighbors = BuildCellNeighbors(grid, execution);
+  if (abort(0.2))
+  {
+    return result;
+  }
+
+  // 2. Per-cell analysis: PCA frame and key points.
+  std::vector<CellFrame> frames(static_cast<std::size_t>(cells));
+  execution.Run(0, cells, [&](Index b, Index e) {
+    for (Index c = b; c < e; ++c)
+    {
+      frames[c] = ComputeCellFrame(P, grid.CellPoints(c), grid.CellSizeOf(c));
+    }
+  });
+  FeatureKeyOptions keyOptions;
+  keyOptions.Rule.Alpha = parameters.Alpha;
+  keyOptions.Rule.ErrorTolerance = parameters.ErrorTolerance;
+  keyOptions.Rule.LinkFactor = parameters.FeatureLinkFactor;
+  keyOptions.Rule.CoordinateEpsilon = parameters.CoordinateEpsilon;
+  keyOptions.Rule.Snap = parameters.Snap;
+  keyOptions.Validate = parameters.ValidateKeyPoints;
+  keyOptions.Radius = std::max(1e-6, std::min(1.0, parameters.KeyPointRadius)) * h;
+  keyOptions.MinimumProminence = std::max(0.0, parameters.KeyPointProminence) * keyOptions.Radius;
+  keyOptions.InPlaneExtremes = parameters.InPlaneKeyPoints;
+  keyOptions.ExtremeRepresentative = parameters.ExtremeKeyPoints;
+  std::vector<std::vector<FeatureKey>> keys(static_cast<std::size_t>(cells));
+  execution.Run(0, cells, [&](Index b, Index e) {
+    LocalPoints q;
+    for (Index c = b; c < e; ++c)
+    {
+      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q);
+    }
+  });
+  if (abort(0.4))
+  {
+    return result;
+  }
+
+  // 3. Budget: N_c ~ w_c * n_c^gamma, one per cell first when N_s allows.
+  std::vector<double> share(static_cast<std::size_t>(cells));
+  std::vector<Index> capacity(static_cast<std::size_t>(cells));
+  double meanVariation = 0.0;
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
+  }
+  meanVariation /= static_cast<double>(total);
+  const double gamma = std::max(0.0, parameters.BudgetExponent);
+  for (Index c = 0; c < cells; ++c)
+  {
+    double weight = 1.0;
+    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    {
+      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+    }
+    share[c] = weight * std::pow(static_cast<double>(capacity[c]), gamma);
+  }
+  const std::vector<Index> budget =
+    ApportionWithCoverage(share, capacity, target, parameters.CoverEveryCell);
+
+  // 4. Sampling inside each cell: key samples, then Lloyd with keys fixed.
+  SampleSet samples;
+  samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (Index c = 0; c < cells; ++c)
+  {
+    samples.Start[c + 1] = samples.Start[c] + budget[c];
+  }
+  const Index count = samples.Start[cells];
+  samples.Position.assign(static_cast<std::size_t>(3 * count), 0.0);
+  samples.Fixed.assign(static_cast<std::size_t>(count), 0);
+  std::vector<SampleInfo> info(static_cast<std::size_t>(count));
+  execution.Run(0, cells, [&](Index b, Index e) {
+    CellScratch scratch;
+    std::vector<Index> exclude;
+    for (Index c = b; c < e; ++c)
+    {
+      const Index first = samples.Start[c];
+      const Index keyCount = std::min<Index>(budget[c], static_cast<Index>(keys[c].size()));
+      exclude.clear();
+      for (Index s = first; s < samples.Start[c + 1]; ++s)
+      {
+        info[s].Owner = c;
+      }
+      for (Index k = 0; k < keyCount; ++k)
+      {
+        const FeatureKey& key = keys[c][k];
+        std::copy(key.Position, key.Position + 3, samples.Position.data() + 3 * (first + k));
+        samples.Fixed[first + k] = 1;
+        info[first + k].KeyPoint = key.Point;
+        info[first + k].KeyError = key.Error;
+        exclude.push_back(key.Point);
+      }
+      RelaxCell(P, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
+        budget[c], parameters.LloydIterations, samples, scratch);
+    }
+  });
+  if (abort(0.6))
+  {
+    return result;
+  }
+
+  // 5. Cross-cell refinement.
+  std::vector<Index> assign;
+  std::vector<double> distance2;
+  for (int it = 0; it < CrossIterations(parameters); ++it)
+  {
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+    if (abort(0.6 + 0.2 * (it + 1) / CrossIterations(parameters)))
+    {
+      return result;
+    }
+  }
+  for (int round = 0; parameters.FillHoles && round < parameters.HoleFillRounds; ++round)
+  {
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    std::vector<Index> order;
+    const auto maxMoves = static_cast<Index>(
+      std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
+    if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
+    {
+      break;
+    }
+    std::vector<SampleInfo> moved(info.size());
+    for (Index s = 0; s < count; ++s)
+    {
+      moved[s] = info[order[s]];
+      moved[s].Owner = static_cast<Index>(
+        std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
+    }
+    info.swap(moved);
+    // One Lloyd step re-centres the moved samples and their neighbours.
+    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+  }
+
+  // Clusters: every point joins its nearest sample.
+  AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+  std::vector<Index> clusterSize(static_cast<std::size_t>(count), 0);
+  for (Index s : assign)
+  {
+    if (s >= 0)
+    {
+      ++clusterSize[s];
+    }
+  }
+  FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
+  std::vector<Index> memberStart(static_cast<std::size_t>(count) + 1, 0);
+  for (Index s = 0; s < count; ++s)
+  {
+    memberStart[s + 1] = memberStart[s] + clusterSize[s];
+  }
+  result.Members.assign(static_cast<std::size_t>(memberStart[count]), -1);
+  {
+    std::vector<Index> fill(memberStart.begin(), memberStart.end() - 1);
+    for (std::size_t i = 0; i < assign.size(); ++i)
+    {
+      if (assign[i] >= 0)
+      {
+        result.Members[fill[assign[i]]++] = original.Order[i];
+      }
+    }
+  }
+  if (abort(0.9))
+  {
+    return result;
+  }
+
+  // Output samples.
+  Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
+  for (Index id : ids)
+  {
+    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+  }
+  cloudCentroid /= static_cast<double>(total);
+  result.Samples.resize(static_cast<std::size_t>(count));
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      Sample& out = result.Samples[s];
+      const double* p = samples.Position.data() + 3 * s;
+      const CellFrame& frame = frames[info[s].Owner];
+      out.MemberBegin = memberStart[s];
+      out.ClusterSize = clusterSize[s];
+      const Index* first = result.Members.data() + memberStart[s];
+      Index nearest = info[s].KeyPoint >= 0 ? original.Order[info[s].KeyPoint] : -1;
+      double bestD = std::numeric_limits<double>::infinity();
+      Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
+      double mean[3] = { 0.0, 0.0, 0.0 };
+      for (Index m = 0; m < clusterSize[s]; ++m)
+      {
+        const double* x = xyz + 3 * first[m];
+        for (int a = 0; a < 3; ++a)
+        {
+          mean[a] += x[a];
+        }
+        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+          (x[2] - p[2]) * (x[2] - p[2]);
+        if (d < bestD || (d == bestD && first[m] < nearest))
+        {
+          bestD = d;
+          nearest = first[m];
+        }
+        if (normals)
+        {
+          const Eigen::Vector3d v(normals[3 * first[m]], normals[3 * first[m] + 1], normals[3 * first[m] + 2]);
+          if (v.allFinite())
+          {
+            normalSum += v;
+          }
+        }
+      }
+      if (nearest < 0)
+      {
+        nearest = original.CellPoints(info[s].Owner)[0]; // no member could be found
+      }
+      out.Representative = nearest;
+      const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
+        !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
+      // A free sample that is not snapped is its final cluster's centroid.
+      const bool centroid = !snap && !samples.Fixed[s] && clusterSize[s] > 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        out.Position[a] = snap ? xyz[3 * nearest + a]
+                               : (centroid ? mean[a] / static_cast<double>(clusterSize[s]) : p[a]);
+      }
+      Eigen::Vector3d normal = frame.Normal();
+      const Eigen::Vector3d reference =
+        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(frame.Centroid - cloudCentroid);
+      if (normal.dot(reference) < 0.0)
+      {
+        normal = -normal;
+      }
+      std::copy(normal.data(), normal.data() + 3, out.Normal);
+      out.SurfaceVariation = frame.SurfaceVariation();
+      out.Key = samples.Fixed[s] != 0;
+      out.KeyError = info[s].KeyError;
+    }
+  });
+  double sum = 0.0;
+  for (const Sample& s : result.Samples)
+  {
+    if (s.Key)
+    {
+      ++result.NumberOfKeyPoints;
+      sum += s.KeyError;
+      result.MKPE = std::max(result.MKPE, s.KeyError);
+    }
+  }
+  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+  execution.Report(1.0);
+  return result;
+}
+} // namespace asmcore

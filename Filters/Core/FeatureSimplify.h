@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The feature-preserving mode of the ASM driver (ASM-spec.md, "What the
+ * literal reading measures, and what fixes it"). Phases, each a separate
+ * step of SimplifyFeaturePreserving so that a distributed driver can hook in
+ * between them:
+ *
+ *  1. grid: hash the points (automatic or given cell size, as in Paper mode);
+ *  2. per-cell analysis: PCA frame, key points (FeatureKeyPoints.h) — the
+ *     extremes along +-v2 of the band clusters (link distance
+ *     FeatureLinkFactor spacings) and, with InPlaneKeyPoints, along +-v0/+-v1,
+ *     kept only when they are Lemma 2 extremes among the points within
+ *     KeyPointRadius * h, neighbouring cells included (ValidateKeyPoints);
+ *     a key sample sits on its extreme point (ExtremeKeyPoints);
+ *  3. budget: N_c ~ w_c * n_c^BudgetExponent (from the cell's own points and
+ *     the global mean of the weight), with one sample per non-empty cell
+ *     first when N_s allows (CoverEveryCell), exact in total;
+ *  4. sampling: per cell, the most prominent key points up to N_c, then the
+ *     free samples by farthest-point seeding and LloydIterations Lloyd
+ *     iterations inside the cell with the key samples fixed (Lloyd.h);
+ *  5. cross-cell refinement: CrossCellIterations Lloyd iterations across cell
+ *     borders; optionally (FillHoles) a bounded hole-filling pass; then every
+ *     point joins its nearest sample (the sample's cluster).
+ *
+ * Locality, for distributed runs: every step after the budget reads one ring
+ * of cells, so a cell's samples depend only on the points within
+ * InfluenceRingsOf(parameters) <= InfluenceRings rings of cells around it,
+ * given the global grid (origin, cell size) and its budget. The budget share
+ * of a cell is computed from its own points (and the global mean surface
+ * variation with the adaptive weight); the coverage rule for N_s < cells and
+ * the hole filling are global and are not supported in distributed runs.
+ */
+#ifndef asm_core_FeatureSimplify_h
+#define asm_core_FeatureSimplify_h
+
+#include "Simplify.h"
+
+namespace asmcore
+{
+/// Largest number of Lloyd iterations across cell borders.
+constexpr int MaxCrossCellIterations = 4;
+/// Rings of cells a cell's result may depend on, whatever the parameters:
+/// one for Lemma 2, two per cross-cell iteration, two for the final assignment.
+constexpr int InfluenceRings = 1 + 2 * MaxCrossCellIterations + 2;
+
+/// The rings a cell's result depends on with these parameters.
+VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
+
+/// Simplify in the feature-preserving mode (see above); same contract as
+/// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever
+/// the thread count, Members partitioning the input points among the samples.
+VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(const double* xyz,
+  const std::vector<Index>& ids, const double* normals, const SimplifyParameters& parameters,
+  const Execution& execution = {});
+} // namespace asmcore
+
+#endif

@@ -1,0 +1,236 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "HoleFilling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace asmcore
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+inline double Distance2(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+Index CellOfSlot(const CellGrid& grid, Index slot)
+{
+  return static_cast<Index>(
+    std::upper_bound(grid.CellStart.begin(), grid.CellStart.end(), slot) - grid.CellStart.begin() - 1);
+}
+} // namespace
+
+Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const std::vector<Index>& assign, const std::vector<double>& distance2, Index maxMoves,
+  SampleSet& samples, std::vector<Index>& order, const Execution& execution)
+{
+  const Index count = samples.Size();
+  const Index cells = grid.NumberOfCells();
+  const Index points = static_cast<Index>(assign.size());
+  order.resize(static_cast<std::size_t>(count));
+  std::iota(order.begin(), order.end(), Index(0));
+  if (maxMoves <= 0 || count < 2)
+  {
+    return 0;
+  }
+  // Members of each sample (point slots), by counting sort.
+  std::vector<Index> start(static_cast<std::size_t>(count) + 1, 0);
+  for (Index s : assign)
+  {
+    if (s >= 0)
+    {
+      ++start[s + 1];
+    }
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Index> members(static_cast<std::size_t>(start[count]));
+  {
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (Index i = 0; i < points; ++i)
+    {
+      if (assign[i] >= 0)
+      {
+        members[fill[assign[i]]++] = i;
+      }
+    }
+  }
+  // Candidates: the free samples with the most points per unit of spread
+  // first (small clusters in dense areas), a few per move.
+  std::vector<double> radius(static_cast<std::size_t>(count), Infinity);
+  for (Index s = 0; s < count; ++s)
+  {
+    if (samples.Fixed[s] || start[s + 1] == start[s])
+    {
+      continue;
+    }
+    double r = 0.0;
+    for (Index m = start[s]; m < start[s + 1]; ++m)
+    {
+      r = std::max(r, distance2[members[m]]);
+    }
+    radius[s] = r;
+  }
+  std::vector<Index> candidates(static_cast<std::size_t>(count));
+  std::iota(candidates.begin(), candidates.end(), Index(0));
+  const Index keep = std::min<Index>(count, 8 * maxMoves);
+  (void)execution;
+  auto smaller = [&](Index a, Index b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); };
+  std::partial_sort(candidates.begin(), candidates.begin() + keep, candidates.end(), smaller);
+  candidates.resize(static_cast<std::size_t>(keep));
+  while (!candidates.empty() && !std::isfinite(radius[candidates.back()]))
+  {
+    candidates.pop_back();
+  }
+  // Cost of removing candidate s, and who takes over its members.
+  std::vector<Index> heirs;
+  auto removalCost = [&](Index s) {
+    double cost = 0.0;
+    heirs.clear();
+    for (Index m = start[s]; m < start[s + 1]; ++m)
+    {
+      const Index slot = members[m];
+      const double* p = xyz + 3 * grid.Order[slot];
+      const Index* ring = neighbors.Of(CellOfSlot(grid, slot));
+      double best = Infinity;
+      Index heir = -1;
+      for (int r = 0; r < 27; ++r)
+      {
+        const Index nb = ring[r];
+        for (Index t = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && t < samples.Start[nb + 1]; ++t)
+        {
+          const double d = Distance2(p, samples.Position.data() + 3 * t);
+          if (t != s && d < best)
+          {
+            best = d;
+            heir = t;
+          }
+        }
+      }
+      cost = std::max(cost, best);
+      if (heir >= 0 && std::find(heirs.begin(), heirs.end(), heir) == heirs.end())
+      {
+        heirs.push_back(heir);
+      }
+    }
+    return cost;
+  };
+  // Gaps: the points farthest from every sample, one per gap (a point
+  // within its own gap distance of a gap taken already, in its cell's ring,
+  // belongs to that gap).
+  std::vector<Index> far;
+  far.reserve(static_cast<std::size_t>(points));
+  for (Index i = 0; i < points; ++i)
+  {
+    if (std::isfinite(distance2[i]))
+    {
+      far.push_back(i);
+    }
+  }
+  auto fartherFirst = [&](Index a, Index b) {
+    return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
+  };
+  const auto look = static_cast<std::ptrdiff_t>(std::min<std::size_t>(far.size(), 20 * maxMoves));
+  std::nth_element(far.begin(), far.begin() + look, far.end(), fartherFirst);
+  far.resize(static_cast<std::size_t>(look));
+  std::sort(far.begin(), far.end(), fartherFirst);
+  std::vector<Index> gaps;
+  std::vector<Index> head(static_cast<std::size_t>(cells), -1); // gaps per cell, chained
+  std::vector<Index> chain;
+  for (Index i : far)
+  {
+    if (static_cast<Index>(gaps.size()) >= maxMoves)
+    {
+      break;
+    }
+    const double* p = xyz + 3 * grid.Order[i];
+    const Index cell = CellOfSlot(grid, i);
+    const Index* ring = neighbors.Of(cell);
+    bool separate = true;
+    for (int k = 0; k < 27 && separate; ++k)
+    {
+      for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
+      {
+        separate = Distance2(p, xyz + 3 * grid.Order[gaps[g]]) > distance2[i];
+      }
+    }
+    if (separate)
+    {
+      chain.push_back(head[cell]);
+      head[cell] = static_cast<Index>(gaps.size());
+      gaps.push_back(i);
+    }
+  }
+  // Cheapest candidates into the largest gaps, while it clearly pays.
+  std::vector<char> blocked(static_cast<std::size_t>(count), 0);
+  std::vector<Index> owner(static_cast<std::size_t>(count));
+  for (Index c = 0; c < cells; ++c)
+  {
+    std::fill(owner.begin() + samples.Start[c], owner.begin() + samples.Start[c + 1], c);
+  }
+  // The most crowded candidates are tried in turn for each gap, from the
+  // largest; a candidate that does not pay for this gap is passed over.
+  Index moves = 0;
+  std::size_t next = 0;
+  for (Index g : gaps)
+  {
+    bool moved = false;
+    for (int tries = 0; tries < 8 && !moved; ++tries)
+    {
+      while (next < candidates.size() && blocked[candidates[next]])
+      {
+        ++next;
+      }
+      if (next >= candidates.size())
+      {
+        break;
+      }
+      const Index s = candidates[next++];
+      if (!(removalCost(s) < 0.9 * distance2[g]))
+      {
+        continue;
+      }
+      blocked[s] = 1;
+      for (Index t : heirs)
+      {
+        blocked[t] = 1;
+      }
+      std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
+      owner[s] = CellOfSlot(grid, g);
+      ++moves;
+      moved = true;
+    }
+    if (!moved)
+    {
+      break;
+    }
+  }
+  if (moves == 0)
+  {
+    return 0;
+  }
+  // Regroup by owner cell (stable: the order within a cell is kept).
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return owner[a] < owner[b]; });
+  std::vector<double> position(samples.Position.size());
+  std::vector<char> fixed(samples.Fixed.size());
+  std::fill(samples.Start.begin(), samples.Start.end(), 0);
+  for (Index s = 0; s < count; ++s)
+  {
+    std::copy(samples.Position.data() + 3 * order[s], samples.Position.data() + 3 * order[s] + 3,
+      position.data() + 3 * s);
+    fixed[s] = samples.Fixed[order[s]];
+    ++samples.Start[owner[order[s]] + 1];
+  }
+  for (Index c = 0; c < cells; ++c)
+  {
+    samples.Start[c + 1] += samples.Start[c];
+  }
+  samples.Position.swap(position);
+  samples.Fixed.swap(fixed);
+  return moves;
+}
+} // namespace asmcore

@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Lloyd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace asmcore
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+inline double Distance2(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+} // namespace
+
+void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame& frame,
+  const std::vector<Index>& exclude, Index firstSample, Index fixedCount, Index budget,
+  int iterations, SampleSet& samples, CellScratch& scratch)
+{
+  const Index free = budget - fixedCount;
+  if (free <= 0 || n <= 0)
+  {
+    return;
+  }
+  double* pos = samples.Position.data() + 3 * firstSample;
+  if (iterations <= 0)
+  {
+    // Median splits of the other points in the (v0, v1) plane.
+    scratch.Local.resize(static_cast<std::size_t>(n));
+    scratch.Subset.clear();
+    for (Index i = 0; i < n; ++i)
+    {
+      scratch.Local[i] = frame.ToLocal(xyz + 3 * points[i]);
+      if (std::find(exclude.begin(), exclude.end(), points[i]) == exclude.end())
+      {
+        scratch.Subset.push_back(i);
+      }
+    }
+    Clusters groups;
+    SplitInPlane(scratch.Local, scratch.Subset.data(), scratch.Subset.data() + scratch.Subset.size(),
+      free, groups);
+    for (Index k = 0; k < groups.Size(); ++k)
+    {
+      const Eigen::Vector3d world =
+        frame.Centroid + frame.Axes * Centroid(scratch.Local, groups.Begin(k), groups.End(k));
+      std::copy(world.data(), world.data() + 3, pos + 3 * (fixedCount + k));
+    }
+    return;
+  }
+  // Farthest-point seeding from the fixed samples.
+  scratch.Distance.assign(static_cast<std::size_t>(n), Infinity);
+  auto lower = [&](const double* seed) {
+    for (Index i = 0; i < n; ++i)
+    {
+      scratch.Distance[i] = std::min(scratch.Distance[i], Distance2(xyz + 3 * points[i], seed));
+    }
+  };
+  for (Index s = 0; s < fixedCount; ++s)
+  {
+    lower(pos + 3 * s);
+  }
+  for (Index s = fixedCount; s < budget; ++s)
+  {
+    Index pick = 0;
+    if (s == 0)
+    {
+      // No key point: start from the point nearest the cell's centroid.
+      const double centre[3] = { frame.Centroid[0], frame.Centroid[1], frame.Centroid[2] };
+      double best = Infinity;
+      for (Index i = 0; i < n; ++i)
+      {
+        const double d = Distance2(xyz + 3 * points[i], centre);
+        if (d < best)
+        {
+          best = d;
+          pick = i;
+        }
+      }
+    }
+    else
+    {
+      for (Index i = 1; i < n; ++i)
+      {
+        if (scratch.Distance[i] > scratch.Distance[pick])
+        {
+          pick = i;
+        }
+      }
+    }
+    std::copy(xyz + 3 * points[pick], xyz + 3 * points[pick] + 3, pos + 3 * s);
+    lower(pos + 3 * s);
+  }
+  // Lloyd iterations inside the cell, fixed samples fixed.
+  scratch.Label.resize(static_cast<std::size_t>(n));
+  for (int it = 0; it < iterations; ++it)
+  {
+    scratch.Sum.assign(static_cast<std::size_t>(3 * budget), 0.0);
+    scratch.Count.assign(static_cast<std::size_t>(budget), 0);
+    for (Index i = 0; i < n; ++i)
+    {
+      const double* p = xyz + 3 * points[i];
+      Index best = 0;
+      double bestD = Distance2(p, pos);
+      for (Index s = 1; s < budget; ++s)
+      {
+        const double d = Distance2(p, pos + 3 * s);
+        if (d < bestD)
+        {
+          bestD = d;
+          best = s;
+        }
+      }
+      ++scratch.Count[best];
+      for (int a = 0; a < 3; ++a)
+      {
+        scratch.Sum[3 * best + a] += p[a];
+      }
+    }
+    for (Index s = fixedCount; s < budget; ++s)
+    {
+      if (scratch.Count[s] > 0)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          pos[3 * s + a] = scratch.Sum[3 * s + a] / static_cast<double>(scratch.Count[s]);
+        }
+      }
+    }
+  }
+}
+
+void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, std::vector<Index>& assign, std::vector<double>& distance2,
+  const Execution& execution)
+{
+  assign.resize(grid.Order.size());
+  distance2.resize(grid.Order.size());
+  const double* pos = samples.Position.data();
+  execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
+    std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
+    for (Index c = b; c < e; ++c)
+    {
+      const Index first = samples.Start[c], last = samples.Start[c + 1];
+      // Pass 1: the nearest of the cell's own samples, and the farthest any
+      // point of the cell is from it (the search radius for the others).
+      double reach = 0.0;
+      double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        Index best = -1;
+        double bestD = Infinity;
+        for (Index s = first; s < last; ++s)
+        {
+          const double d = Distance2(p, pos + 3 * s);
+          if (d < bestD)
+          {
+            bestD = d;
+            best = s;
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+        reach = std::max(reach, bestD);
+        for (int a = 0; a < 3; ++a)
+        {
+          box[a] = std::min(box[a], p[a]);
+          box[3 + a] = std::max(box[3 + a], p[a]);
+        }
+      }
+      // The neighbours' samples that can be nearer for some point of c:
+      // within `reach` of the box of c's points.
+      candidates.clear();
+      const Index* ring = neighbors.Of(c);
+      const double r = std::sqrt(reach);
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        if (k == 13 || nb < 0)
+        {
+          continue;
+        }
+        for (Index s = samples.Start[nb]; s < samples.Start[nb + 1]; ++s)
+        {
+          const double* t = pos + 3 * s;
+          double g2 = 0.0;
+          for (int a = 0; a < 3; ++a)
+          {
+            const double g = t[a] < box[a] ? box[a] - t[a] : (t[a] > box[3 + a] ? t[a] - box[3 + a] : 0.0);
+            g2 += g * g;
+          }
+          if (!(g2 > reach) || !std::isfinite(r))
+          {
+            candidates.emplace_back(g2, s);
+          }
+        }
+      }
+      if (candidates.empty())
+      {
+        continue;
+      }
+      // Pass 2: those candidates, nearest the box first; a point lies in the
+      // box, so it is at least the box gap away from a candidate (ties: the
+      // lower sample index).
+      std::sort(candidates.begin(), candidates.end());
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        Index best = assign[i];
+        double bestD = distance2[i];
+        for (const auto& candidate : candidates)
+        {
+          if (candidate.first > bestD)
+          {
+            break;
+          }
+          const Index s = candidate.second;
+          const double d = Distance2(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+      }
+    }
+  });
+}
+
+void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const std::vector<Index>& assign, SampleSet& samples, const Execution& execution)
+{
+  std::vector<double> next(samples.Position);
+  execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
+    std::vector<double> sum;
+    std::vector<Index> count;
+    for (Index c = b; c < e; ++c)
+    {
+      const Index first = samples.Start[c], budget = samples.Start[c + 1] - first;
+      if (budget == 0)
+      {
+        continue;
+      }
+      sum.assign(static_cast<std::size_t>(3 * budget), 0.0);
+      count.assign(static_cast<std::size_t>(budget), 0);
+      // Points assigned to c's samples lie in c's ring; fixed visiting order.
+      const Index* ring = neighbors.Of(c);
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        if (nb < 0)
+        {
+          continue;
+        }
+        for (Index i = grid.CellStart[nb]; i < grid.CellStart[nb + 1]; ++i)
+        {
+          const Index s = assign[i] - first;
+          if (s >= 0 && s < budget)
+          {
+            const double* p = xyz + 3 * grid.Order[i];
+            ++count[s];
+            for (int a = 0; a < 3; ++a)
+            {
+              sum[3 * s + a] += p[a];
+            }
+          }
+        }
+      }
+      for (Index s = 0; s < budget; ++s)
+      {
+        if (!samples.Fixed[first + s] && count[s] > 0)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            next[3 * (first + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
+          }
+        }
+      }
+    }
+  });
+  samples.Position.swap(next);
+}
+} // namespace asmcore

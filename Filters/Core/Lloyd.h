@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Spatially connected middle clusters for the feature-preserving mode: the
+ * samples of a cell are seeded by farthest-point sampling from its key points
+ * and relaxed by a few Lloyd (k-means) iterations with the key samples fixed,
+ * first inside the cell, then across cell borders (each point goes to the
+ * nearest sample owned by its own or a neighbouring cell). A Lloyd cluster is
+ * the part of the cloud nearest one sample, a convex region cut out of the
+ * surface: it does not break into pieces the way median splits of a band with
+ * holes do, and its centroid stays on the surface.
+ *
+ * Every sample belongs to one grid cell (its owner). Each step looks at one
+ * ring of cells only and writes per-cell or per-point slots, so the result
+ * does not depend on the thread count.
+ */
+#ifndef asm_core_Lloyd_h
+#define asm_core_Lloyd_h
+
+#include "CellFrame.h"
+#include "CellNeighbors.h"
+#include "KeyPoints.h"
+
+namespace asmcore
+{
+/// The samples of a run, grouped by owner cell.
+struct VTKASMFILTERS_EXPORT SampleSet
+{
+  std::vector<double> Position;    ///< 3 per sample
+  std::vector<char> Fixed;         ///< key samples do not move
+  std::vector<Index> Start;        ///< cell c owns samples [Start[c], Start[c+1])
+  Index Size() const { return static_cast<Index>(this->Fixed.size()); }
+};
+
+/// Place the free samples of cell c (slots Start[c] + fixedCount .. Start[c+1];
+/// the fixed ones are already written) by farthest-point seeding from the
+/// fixed samples and `iterations` Lloyd iterations inside the cell. With
+/// iterations == 0, the free samples are instead the centroids of median
+/// splits in the (v0, v1) plane of the cell's points other than `exclude`
+/// (the literal reading's middle clustering). Scratch vectors are reused.
+struct VTKASMFILTERS_EXPORT CellScratch
+{
+  std::vector<double> Distance;
+  std::vector<Index> Label;
+  std::vector<double> Sum;
+  std::vector<Index> Count;
+  std::vector<Index> Subset;
+  LocalPoints Local;
+};
+VTKASMFILTERS_EXPORT void RelaxCell(const double* xyz, const Index* points, Index n,
+  const CellFrame& frame, const std::vector<Index>& exclude, Index firstSample, Index fixedCount,
+  Index budget, int iterations, SampleSet& samples, CellScratch& scratch);
+
+/// For every point (slot i of grid.Order): the nearest sample owned by its
+/// cell or a neighbouring one (ties: lower sample index), and the squared
+/// distance. -1 / infinity when none of those cells owns a sample.
+VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const SampleSet& samples, std::vector<Index>& assign,
+  std::vector<double>& distance2, const Execution& execution);
+
+/// One Lloyd step across cell borders: every free sample moves to the
+/// centroid of the points assigned to it (unchanged when it has none).
+VTKASMFILTERS_EXPORT void MoveToCentroids(const double* xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const std::vector<Index>& assign, SampleSet& samples,
+  const Execution& execution);
+
+} // namespace asmcore
+
+#endif

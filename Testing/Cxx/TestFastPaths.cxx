@@ -1,0 +1,231 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The fast paths of the core give the results of their plain definitions:
+// the grid (bitmap and hash paths, reciprocal keys, counting sort, parallel
+// cuts), the in-plane linking (dense bins) and the level-by-level kd-tree.
+#include "Core/Grid.h"
+#include "Core/KeyPoints.h"
+#include "Core/Neighbors.h"
+
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <thread>
+#include <utility>
+
+using asmcore::Index;
+using asmtest::AllIds;
+using asmtest::Cloud;
+
+namespace
+{
+// Cuts ranges into uneven pieces and runs them on two threads: the results
+// must not depend on how the work is cut or scheduled.
+asmcore::Execution UnevenTwoThreads()
+{
+  asmcore::Execution execution;
+  execution.For = [](Index begin, Index end, const std::function<void(Index, Index)>& body) {
+    const Index n = end - begin;
+    const Index cut1 = begin + n / 7, cut2 = begin + n / 7 + (n * 3) / 5;
+    std::thread other([&] { body(cut1, cut2); });
+    body(begin, cut1);
+    body(cut2, end);
+    other.join();
+  };
+  return execution;
+}
+
+// The grid by its definition: (key, id) pairs sorted.
+asmcore::CellGrid ReferenceGrid(const double* xyz, const std::vector<Index>& ids, const asmcore::GridSpec& spec)
+{
+  std::vector<std::pair<std::uint64_t, Index>> keyed;
+  for (Index id : ids)
+  {
+    keyed.emplace_back(spec.KeyOf(xyz + 3 * id), id);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  asmcore::CellGrid grid;
+  grid.Spec = spec;
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+  {
+    grid.Order.push_back(keyed[i].second);
+    if (i == 0 || keyed[i].first != keyed[i - 1].first)
+    {
+      grid.CellKey.push_back(keyed[i].first);
+      grid.CellStart.push_back(static_cast<Index>(i));
+    }
+  }
+  grid.CellStart.push_back(static_cast<Index>(keyed.size()));
+  return grid;
+}
+
+void ExpectSameGrid(const asmcore::CellGrid& a, const asmcore::CellGrid& b)
+{
+  EXPECT_EQ(a.CellKey, b.CellKey);
+  EXPECT_EQ(a.CellStart, b.CellStart);
+  EXPECT_EQ(a.Order, b.Order);
+}
+
+// Points exactly on cell borders (multiples of the cell size from the
+// origin) and just beside them, where a reciprocal could round differently.
+Cloud BorderCloud(double h, int n)
+{
+  Cloud c;
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> cell(0, n);
+  std::uniform_int_distribution<int> nudge(-2, 2);
+  for (int i = 0; i < 4000; ++i)
+  {
+    double p[3];
+    for (double& x : p)
+    {
+      x = cell(rng) * h;
+      for (int k = nudge(rng); k != 0; k += k < 0 ? 1 : -1)
+      {
+        x = std::nextafter(x, k < 0 ? -1e300 : 1e300);
+      }
+    }
+    asmtest::Add(c, p[0], p[1], p[2]);
+  }
+  asmtest::Add(c, 0, 0, 0);
+  return c;
+}
+} // namespace
+
+TEST(FastPaths, GridMatchesDefinitionOnBitmapAndHashPaths)
+{
+  const Cloud c = asmtest::Sphere(20000, 1.0, 11, 3.0, -2.0, 0.5);
+  const auto ids = AllIds(c);
+  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
+  // 0.2: a small grid (bitmap); 1e-4: 2e4 cells per axis (hash table).
+  for (double h : { 0.2, 0.013, 1e-4 })
+  {
+    const auto spec = asmcore::GridSpec::Make(bounds, h);
+    const auto reference = ReferenceGrid(c.data(), ids, spec);
+    ExpectSameGrid(asmcore::BuildCellGrid(c.data(), ids, spec), reference);
+    ExpectSameGrid(asmcore::BuildCellGrid(c.data(), ids, spec, UnevenTwoThreads()), reference);
+    EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, spec), reference.NumberOfCells());
+    EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, spec, UnevenTwoThreads()),
+      reference.NumberOfCells());
+  }
+}
+
+TEST(FastPaths, GridKeysExactOnCellBorders)
+{
+  for (double h : { 0.1, 1.0 / 3.0, 0.7 })
+  {
+    const Cloud c = BorderCloud(h, 30);
+    const auto ids = AllIds(c);
+    const auto spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), h);
+    ExpectSameGrid(asmcore::BuildCellGrid(c.data(), ids, spec), ReferenceGrid(c.data(), ids, spec));
+  }
+}
+
+TEST(FastPaths, GridOrdersUnsortedIdsById)
+{
+  const Cloud c = asmtest::Sphere(5000, 2.0, 5);
+  auto ids = AllIds(c);
+  std::mt19937_64 rng(9);
+  std::shuffle(ids.begin(), ids.end(), rng);
+  ids.resize(4000);
+  const auto spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), 0.3);
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), ids, spec, UnevenTwoThreads()),
+    ReferenceGrid(c.data(), ids, spec));
+}
+
+TEST(FastPaths, BoundsAndCellSizeIndependentOfCuts)
+{
+  const Cloud c = asmtest::Sphere(30000, 1.5, 2);
+  const auto ids = AllIds(c);
+  const auto a = asmcore::ComputeBounds(c.data(), ids);
+  const auto b = asmcore::ComputeBounds(c.data(), ids, UnevenTwoThreads());
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_EQ(a.Min[k], b.Min[k]);
+    EXPECT_EQ(a.Max[k], b.Max[k]);
+  }
+  EXPECT_EQ(asmcore::AutomaticCellSize(c.data(), ids, a, 500.0),
+    asmcore::AutomaticCellSize(c.data(), ids, a, 500.0, UnevenTwoThreads()));
+}
+
+TEST(FastPaths, LinkInPlaneMatchesConnectedComponents)
+{
+  // Clumps of points: few and many points, dense and sparse bins (the
+  // sparse ones take the sorted-bin path).
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    const std::size_t n = 2 + static_cast<std::size_t>(u(rng) * (trial < 15 ? 60 : 600));
+    const double spread = trial % 3 == 0 ? 100.0 : 1.0;
+    asmcore::LocalPoints q;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double cx = std::floor(u(rng) * 4) * 0.3 * spread;
+      q.emplace_back(cx + 0.1 * u(rng), 0.1 * u(rng) + (i % 2) * 0.05 * spread, u(rng));
+    }
+    std::vector<Index> subset(n);
+    std::iota(subset.begin(), subset.end(), Index(0));
+    std::shuffle(subset.begin(), subset.end(), rng);
+    const double d = 0.02 + 0.05 * u(rng);
+    const auto clusters = asmcore::LinkInPlane(q, subset, d);
+    // Reference: label propagation over all pairs within d.
+    std::vector<Index> label(n);
+    std::iota(label.begin(), label.end(), Index(0));
+    for (bool changed = true; changed;)
+    {
+      changed = false;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        for (std::size_t j = 0; j < n; ++j)
+        {
+          const Eigen::Vector3d& a = q[subset[i]];
+          const Eigen::Vector3d& b = q[subset[j]];
+          const double dx = a[0] - b[0], dy = a[1] - b[1];
+          if (dx * dx + dy * dy <= d * d && label[j] < label[i])
+          {
+            label[i] = label[j];
+            changed = true;
+          }
+        }
+      }
+    }
+    // Same partition, clusters ordered by first member, members in subset order.
+    std::vector<std::vector<Index>> expected;
+    std::vector<Index> slot(n, -1);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (slot[label[i]] < 0)
+      {
+        slot[label[i]] = static_cast<Index>(expected.size());
+        expected.emplace_back();
+      }
+      expected[slot[label[i]]].push_back(subset[i]);
+    }
+    ASSERT_EQ(clusters.Size(), static_cast<Index>(expected.size())) << "trial " << trial;
+    for (Index k = 0; k < clusters.Size(); ++k)
+    {
+      EXPECT_EQ(std::vector<Index>(clusters.Begin(k), clusters.End(k)), expected[k]);
+    }
+  }
+}
+
+TEST(FastPaths, KdTreeBuiltInParallelAnswersAlike)
+{
+  const Cloud c = asmtest::Sphere(20000, 1.0, 8);
+  const auto ids = AllIds(c);
+  const asmcore::Neighbors one(c.data(), ids);
+  const asmcore::Neighbors two(c.data(), ids, UnevenTwoThreads());
+  std::vector<Index> a, b;
+  std::vector<double> da, db;
+  for (Index i = 0; i < 2000; i += 7)
+  {
+    one.KNearest(c.data() + 3 * i, 12, a, da);
+    two.KNearest(c.data() + 3 * i, 12, b, db);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(da, db);
+  }
+}
