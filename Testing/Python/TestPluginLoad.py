@@ -16,6 +16,7 @@ asm = ASMSimplify(Input=reader, OutputFraction=0.05)  # noqa: F405
 
 # Every property of Plugin/ASMSimplify.xml, with its default.
 expected_defaults = {
+    "Mode": "Feature Preserving",
     "TargetMode": "Output Fraction",
     "OutputFraction": 0.05,
     "NumberOfOutputPoints": 1000,
@@ -31,6 +32,20 @@ expected_defaults = {
     "GenerateCurvature": 1,
     "CurvatureNeighbors": 20,
     "OutputPointsPrecision": "Same as input",
+    # Options of the feature-preserving mode.
+    "ValidateKeyPoints": 1,
+    "KeyPointRadius": 0.5,
+    "KeyPointProminence": 0.05,
+    "InPlaneKeyPoints": 1,
+    "ExtremeKeyPoints": 1,
+    "CoverEveryCell": 1,
+    "BudgetExponent": 0.5,
+    "LloydIterations": 4,
+    "CrossCellIterations": 1,
+    "InputPointSamples": 1,
+    "FillHoles": 1,
+    "HoleFillFraction": 0.02,
+    # Parallel (MPI) runs.
     "AlwaysDistribute": 0,
 }
 # Nothing in the XML that the test does not know about.
@@ -47,7 +62,7 @@ neighbors = asm.GetProperty("CurvatureNeighbors").SMProperty
 neighbors_range = neighbors.GetDomain("range")
 assert (neighbors_range.GetMinimum(0), neighbors_range.GetMaximum(0)) == (6, 1000)
 # The everyday parameters on the default panel, everything else under Advanced.
-everyday = {"TargetMode", "OutputFraction", "NumberOfOutputPoints", "ErrorTolerance"}
+everyday = {"Mode", "TargetMode", "OutputFraction", "NumberOfOutputPoints", "ErrorTolerance"}
 for name in listed:
     visibility = asm.GetProperty(name).SMProperty.GetPanelVisibility()
     assert visibility == ("default" if name in everyday else "advanced"), (name, visibility)
