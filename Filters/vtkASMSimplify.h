@@ -73,7 +73,9 @@
  * outputs the samples of the cells it owns, with "vtkOriginalProcessIds"
  * next to "vtkOriginalPointIds". With AlwaysDistribute on, 1, 2, 3...
  * processes give the same points (up to floating-point summation order).
- * Design and limits: vtkASMDistributed.h. Without MPI nothing changes.
+ * Distributed runs use Mode PAPER for now (a warning says so when
+ * FEATURE_PRESERVING is selected). Design and limits: vtkASMDistributed.h.
+ * Without MPI nothing changes.
  *
  * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
  */
