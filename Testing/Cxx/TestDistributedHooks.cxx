@@ -38,6 +38,7 @@ void CheckSplit(asmcore::WeightMode weight)
   asmcore::SimplifyParameters p;
   p.NumberOfSamples = 701;
   p.Weight = weight;
+  p.Mode = asmcore::SimplifyMode::Paper; // the hooks serve the paper mode (distributed runs)
   const asmcore::SimplifyResult serial = asmcore::Simplify(cloud.data(), ids, nullptr, p);
   ASSERT_EQ(serial.Samples.size(), 701u);
 
