@@ -194,30 +194,44 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
-std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellGrid& grid,
-  const SimplifyParameters& parameters, double exponent, std::vector<Index>& capacity)
+std::vector<double> CellShares(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const SimplifyParameters& parameters, double exponent)
 {
-  const Index cells = grid.NumberOfCells();
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  capacity.resize(static_cast<std::size_t>(cells));
+  const std::size_t cells = capacity.size();
   double meanVariation = 0.0;
-  for (Index c = 0; c < cells; ++c)
+  Index total = 0;
+  for (std::size_t c = 0; c < cells; ++c)
   {
-    capacity[c] = grid.CellSizeOf(c);
-    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
+    meanVariation += variation[c] * static_cast<double>(capacity[c]);
+    total += capacity[c];
   }
-  meanVariation /= static_cast<double>(grid.Order.size());
-  for (Index c = 0; c < cells; ++c)
+  meanVariation /= static_cast<double>(std::max<Index>(1, total));
+  std::vector<double> share(cells);
+  for (std::size_t c = 0; c < cells; ++c)
   {
     double weight = 1.0;
     if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
     {
-      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+      weight += parameters.CurvatureWeight * variation[c] / meanVariation;
     }
     const auto n = static_cast<double>(capacity[c]);
     share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));
   }
   return share;
+}
+
+std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellGrid& grid,
+  const SimplifyParameters& parameters, double exponent, std::vector<Index>& capacity)
+{
+  const Index cells = grid.NumberOfCells();
+  capacity.resize(static_cast<std::size_t>(cells));
+  std::vector<double> variation(static_cast<std::size_t>(cells));
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    variation[c] = frames[c].SurfaceVariation();
+  }
+  return CellShares(capacity, variation, parameters, exponent);
 }
 
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
@@ -229,26 +243,38 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
-  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  const Index target = parameters.CellBudget
+    ? total
+    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
   if (total == 0 || target == 0)
   {
     return result;
   }
 
   // 1. Hash the points into the grid.
-  const Bounds bounds = ComputeBounds(xyz, ids, execution);
-  double cellSize = parameters.CellSize;
-  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  GridSpec spec;
+  if (parameters.Grid)
   {
-    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
+    spec = *parameters.Grid;
+  }
+  else
+  {
+    const Bounds bounds = ComputeBounds(xyz, ids, execution);
+    double cellSize = parameters.CellSize;
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+    {
+      const double targetCells =
+        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
+    }
+    spec = GridSpec::Make(bounds, cellSize);
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;
@@ -273,9 +299,21 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 3. Budgets (Eq. 4), exact in total.
-  std::vector<Index> capacity;
-  const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
-  const std::vector<Index> budget = ApportionBudget(share, capacity, target);
+  std::vector<Index> budget;
+  if (parameters.CellBudget)
+  {
+    budget.resize(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      budget[c] = std::min(grid.CellSizeOf(c), parameters.CellBudget(grid.CellKey[c]));
+    }
+  }
+  else
+  {
+    std::vector<Index> capacity;
+    const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
+    budget = ApportionBudget(share, capacity, target);
+  }
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
@@ -285,11 +323,18 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   result.Members.assign(static_cast<std::size_t>(total), -1);
 
   Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
-  for (Index id : ids)
+  if (parameters.CloudCentroid)
   {
-    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
   }
-  cloudCentroid /= static_cast<double>(total);
+  else
+  {
+    for (Index id : ids)
+    {
+      cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    }
+    cloudCentroid /= static_cast<double>(total);
+  }
 
   KeyPointRule rule;
   rule.Alpha = parameters.Alpha;
