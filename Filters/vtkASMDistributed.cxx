@@ -654,7 +654,7 @@ Index SimplifyShare::BudgetOf(std::uint64_t key) const
   const auto it = std::lower_bound(this->OwnedKeys.begin(), this->OwnedKeys.end(), key);
   return (it != this->OwnedKeys.end() && *it == key)
     ? this->Budgets[static_cast<std::size_t>(it - this->OwnedKeys.begin())]
-    : 0;
+    : -1; // a halo cell
 }
 
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,

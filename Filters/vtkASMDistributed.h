@@ -47,7 +47,7 @@
  * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
  * The core runs unchanged on each process's points through hooks in
  * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid); halo cells
- * are passed to it too (budget 0) so cross-cell steps can see neighbours.
+ * are passed to it too (budget -1) so cross-cell steps can see neighbours.
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h

@@ -111,9 +111,10 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
 // Every point that no sample took (cells with a budget of 0, key clusters
 // left out by §3.3 (iv)) joins the sample nearest to it, after that sample's
 // own members: the member lists become a partition of the points, and the
-// samples do not move.
+// samples do not move. Points in slots marked in `haloSlot` (halo cells of
+// a distributed run, owned by another process) are dropped instead.
 void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, SimplifyResult& result,
-  const Execution& execution)
+  const std::vector<char>& haloSlot, const Execution& execution)
 {
   const Index total = static_cast<Index>(ids.size());
   // The member slots no sample covers hold the unclaimed points.
@@ -132,7 +133,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   unclaimed.reserve(static_cast<std::size_t>(total - claimed));
   for (Index slot = 0; slot < total; ++slot)
   {
-    if (!covered[slot])
+    if (!covered[slot] && (haloSlot.empty() || !haloSlot[slot]))
     {
       unclaimed.push_back(result.Members[slot]);
     }
@@ -173,7 +174,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
     }
   }
   std::vector<Index> members;
-  members.reserve(static_cast<std::size_t>(total));
+  members.reserve(static_cast<std::size_t>(claimed) + unclaimed.size());
   for (Index s = 0; s < samples; ++s)
   {
     Sample& sample = result.Samples[s];
@@ -300,12 +301,19 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
 
   // 3. Budgets (Eq. 4), exact in total.
   std::vector<Index> budget;
+  std::vector<char> haloSlot; // member slots of halo cells (distributed runs)
   if (parameters.CellBudget)
   {
     budget.resize(static_cast<std::size_t>(cells));
     for (Index c = 0; c < cells; ++c)
     {
-      budget[c] = std::min(grid.CellSizeOf(c), parameters.CellBudget(grid.CellKey[c]));
+      const Index b = parameters.CellBudget(grid.CellKey[c]);
+      budget[c] = std::min(grid.CellSizeOf(c), std::max<Index>(0, b));
+      if (b < 0)
+      {
+        haloSlot.resize(static_cast<std::size_t>(total), 0);
+        std::fill(haloSlot.begin() + grid.CellStart[c], haloSlot.begin() + grid.CellStart[c + 1], 1);
+      }
     }
   }
   else
@@ -467,7 +475,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     }
   }
 
-  AttachUnclaimedPoints(xyz, ids, result, execution);
+  AttachUnclaimedPoints(xyz, ids, result, haloSlot, execution);
 
   // Key point error of the run, summed in sample order (deterministic).
   double sum = 0.0;

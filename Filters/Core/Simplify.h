@@ -66,8 +66,9 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// halo of neighbouring cells, with the agreed grid and budgets.
   ///@{
   const GridSpec* Grid = nullptr; ///< the grid to use instead of one fitted to the points
-  /// Budget N_c of the cell with this key, apportioned over all processes
-  /// (0 for halo cells: neighbours only, no samples). Replaces Eq. 4 on the
+  /// Budget N_c of the cell with this key, apportioned over all processes;
+  /// -1 for halo cells (owned by another process: neighbours only, no
+  /// samples, and their points join no sample here). Replaces Eq. 4 on the
   /// local points; NumberOfSamples is then ignored.
   std::function<Index(std::uint64_t cellKey)> CellBudget;
   const double* CloudCentroid = nullptr; ///< centroid of the whole cloud (orients normals)

@@ -2,7 +2,8 @@
 // The hooks of asmcore::SimplifyParameters used by distributed runs (Grid,
 // CellBudget, CloudCentroid): a cloud cut into "processes" by grid cell, each
 // part simplified with the global grid and budgets, gives exactly the serial
-// samples; halo cells (budget 0) add nothing.
+// samples (positions and the members that place them, CoreSize); halo cells
+// (budget -1) add nothing, and every point joins exactly one sample.
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
 #include "Core/Grid.h"
@@ -25,7 +26,7 @@ std::vector<std::array<double, 4>> Sorted(const asmcore::SimplifyResult& r)
   for (const auto& sample : r.Samples)
   {
     s.push_back({ sample.Position[0], sample.Position[1], sample.Position[2],
-      static_cast<double>(sample.ClusterSize) });
+      static_cast<double>(sample.CoreSize) });
   }
   std::sort(s.begin(), s.end());
   return s;
@@ -72,8 +73,9 @@ void CheckSplit(asmcore::WeightMode weight)
   }
 
   // Three "processes": cells by x index modulo 3; each also gets the cells
-  // of the next index as a halo (budget 0 there).
+  // of the next index as a halo (budget -1 there: halo).
   std::vector<std::array<double, 4>> merged;
+  Index members = 0;
   for (int part = 0; part < 3; ++part)
   {
     std::vector<Index> mine;
@@ -92,12 +94,18 @@ void CheckSplit(asmcore::WeightMode weight)
     q.CellBudget = [&](std::uint64_t key) {
       std::int64_t ijk[3];
       spec.Unpack(key, ijk);
-      return ijk[0] % 3 == part ? budgetOf.at(key) : Index(0);
+      return ijk[0] % 3 == part ? budgetOf.at(key) : Index(-1);
     };
-    const auto partial = Sorted(asmcore::Simplify(cloud.data(), mine, nullptr, q));
+    const asmcore::SimplifyResult result = asmcore::Simplify(cloud.data(), mine, nullptr, q);
+    for (const auto& sample : result.Samples)
+    {
+      members += sample.ClusterSize;
+    }
+    const auto partial = Sorted(result);
     merged.insert(merged.end(), partial.begin(), partial.end());
   }
   std::sort(merged.begin(), merged.end());
+  EXPECT_EQ(members, static_cast<Index>(ids.size())) << "every point in exactly one cluster";
   const auto expected = Sorted(serial);
   ASSERT_EQ(merged.size(), expected.size());
   for (std::size_t i = 0; i < merged.size(); ++i)
