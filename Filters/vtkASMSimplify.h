@@ -234,7 +234,7 @@ public:
 
   ///@{
   /**
-   * FEATURE_PRESERVING: a bounded hole-filling pass (two rounds, each
+   * FEATURE_PRESERVING: a bounded hole-filling pass (up to four rounds, each
    * followed by a Lloyd step) that moves the samples whose removal costs least
    * (at most HoleFillFraction of them per round) to the input points farthest
    * from every sample; default on. Global: a distributed run skips it.
@@ -247,7 +247,7 @@ public:
   ///@{
   /**
    * FEATURE_PRESERVING: largest fraction of the samples the hole filling
-   * moves per round, in [0, 0.5]; default 0.02.
+   * moves per round, in [0, 0.5]; default 0.05.
    */
   vtkSetClampMacro(HoleFillFraction, double, 0.0, 0.5);
   vtkGetMacro(HoleFillFraction, double);
@@ -419,7 +419,7 @@ protected:
   int CrossCellIterations = 1;
   bool InputPointSamples = true;
   bool FillHoles = true;
-  double HoleFillFraction = 0.02;
+  double HoleFillFraction = 0.05;
   int TargetMode = OUTPUT_FRACTION;
   double OutputFraction = 0.05;
   vtkIdType NumberOfOutputPoints = 1000;
