@@ -247,7 +247,7 @@ public:
   ///@{
   /**
    * FEATURE_PRESERVING: largest fraction of the samples the hole filling
-   * moves per round, in [0, 0.5]; default 0.05.
+   * moves per round, in [0, 0.5]; default 0.02.
    */
   vtkSetClampMacro(HoleFillFraction, double, 0.0, 0.5);
   vtkGetMacro(HoleFillFraction, double);
@@ -419,7 +419,7 @@ protected:
   int CrossCellIterations = 1;
   bool InputPointSamples = true;
   bool FillHoles = true;
-  double HoleFillFraction = 0.05;
+  double HoleFillFraction = 0.02;
   int TargetMode = OUTPUT_FRACTION;
   double OutputFraction = 0.05;
   vtkIdType NumberOfOutputPoints = 1000;

@@ -57,7 +57,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
   bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre
   bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
-  double HoleFillFraction = 0.05; ///< at most this fraction of the samples is moved per round
+  double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
   int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step
 };
 

@@ -44,7 +44,7 @@ expected_defaults = {
     "CrossCellIterations": 1,
     "InputPointSamples": 1,
     "FillHoles": 1,
-    "HoleFillFraction": 0.05,
+    "HoleFillFraction": 0.02,
 }
 # Nothing in the XML that the test does not know about.
 listed = set(asm.ListProperties()) - {"Input"}
