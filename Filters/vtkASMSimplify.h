@@ -248,7 +248,7 @@ public:
 
   ///@{
   /**
-   * FEATURE_PRESERVING: a bounded hole-filling pass (two rounds, each
+   * FEATURE_PRESERVING: a bounded hole-filling pass (up to four rounds, each
    * followed by a Lloyd step) that moves the samples whose removal costs least
    * (at most HoleFillFraction of them per round) to the input points farthest
    * from every sample; default on. Global: a distributed run skips it.

@@ -177,7 +177,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       gaps.push_back(i);
     }
   }
-  // Cheapest candidates into the largest gaps, while it clearly pays.
+  // Cheapest candidates into the largest gaps, while it pays.
   std::vector<char> blocked(static_cast<std::size_t>(count), 0);
   std::vector<Index> owner(static_cast<std::size_t>(count));
   for (Index c = 0; c < cells; ++c)
@@ -185,13 +185,15 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     std::fill(owner.begin() + samples.Start[c], owner.begin() + samples.Start[c + 1], c);
   }
   // The most crowded candidates are tried in turn for each gap, from the
-  // largest; a candidate that does not pay for this gap is passed over.
+  // largest; a candidate whose removal would leave a hole as large as this
+  // gap is passed over (it cannot pay for a smaller gap either), and a gap
+  // no candidate pays for is left for the next one (the smaller gaps still
+  // shorten the nearest-neighbour distances).
   Index moves = 0;
   std::size_t next = 0;
   for (Index g : gaps)
   {
-    bool moved = false;
-    for (int tries = 0; tries < 8 && !moved; ++tries)
+    for (int tries = 0; tries < 8; ++tries)
     {
       while (next < candidates.size() && blocked[candidates[next]])
       {
@@ -202,7 +204,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
         break;
       }
       const Index s = candidates[next++];
-      if (!(removalCost(s) < 0.9 * distance2[g]))
+      if (!(removalCost(s) < distance2[g]))
       {
         continue;
       }
@@ -214,10 +216,6 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
       owner[s] = CellOfSlot(grid, g);
       ++moves;
-      moved = true;
-    }
-    if (!moved)
-    {
       break;
     }
   }

@@ -8,7 +8,7 @@
  * than their own gap distance count once). Removing a free sample s leaves
  * its cluster to the other samples: its cost is the largest distance from a
  * member of s to the nearest other sample. The cheapest samples move to the
- * largest gaps while the cost is clearly below the gap, each move blocking the
+ * largest gaps while the cost is below the gap, each move blocking the
  * samples that took over the moved one's members. Global (it ranks all
  * samples and points), so not for distributed runs.
  */

@@ -59,7 +59,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre
   bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
-  int HoleFillRounds = 2;         ///< rounds of hole filling, each followed by a Lloyd step
+  int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step
 
   /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.
   /// Every process calls Simplify on the points of the cells it owns plus a
