@@ -14,44 +14,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-// The first k with the least d[k] < infinity (-1 if none), and that value in
-// bestD: the loop `if (d[k] < bestD) { bestD = d[k]; best = k; }` from
-// bestD = infinity, with four independent chains (shorter latency).
-inline Index FirstMinimum(const double* d, Index n, double& bestD)
-{
-  double m[4] = { Infinity, Infinity, Infinity, Infinity };
-  Index at[4] = { -1, -1, -1, -1 };
-  Index k = 0;
-  for (; k + 4 <= n; k += 4)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      const bool less = d[k + j] < m[j];
-      m[j] = less ? d[k + j] : m[j];
-      at[j] = less ? k + j : at[j];
-    }
-  }
-  for (int j = 0; k < n; ++k, ++j)
-  {
-    if (d[k] < m[j])
-    {
-      m[j] = d[k];
-      at[j] = k;
-    }
-  }
-  Index best = -1;
-  bestD = Infinity;
-  for (int j = 0; j < 4; ++j)
-  {
-    if (at[j] >= 0 && (m[j] < bestD || (m[j] == bestD && at[j] < best)))
-    {
-      bestD = m[j];
-      best = at[j];
-    }
-  }
-  return best;
-}
-
 
 } // namespace
 
@@ -181,8 +143,6 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
     std::vector<Index> ringSamples;
-    std::vector<double> sx, sy, sz, cx, cy, cz, dist;
-    constexpr Index Block = 4;
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c], last = samples.Start[c + 1];
@@ -210,35 +170,22 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       }
       // Pass 1: the nearest of the cell's own samples, and the farthest any
       // point of the cell is from it (the search radius for the others).
-      // The samples are copied to structure-of-arrays scratch so the
-      // distances of one point to them are computed in vector lanes (same
-      // formula, same rounding as SquaredDistance).
-      const Index own = last - first;
-      sx.resize(static_cast<std::size_t>(own));
-      sy.resize(static_cast<std::size_t>(own));
-      sz.resize(static_cast<std::size_t>(own));
-      dist.resize(static_cast<std::size_t>(std::max<Index>(own, Block)));
-      for (Index s = 0; s < own; ++s)
-      {
-        sx[s] = pos[3 * (first + s)];
-        sy[s] = pos[3 * (first + s) + 1];
-        sz[s] = pos[3 * (first + s) + 2];
-      }
       double reach = 0.0;
       double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
         const double* p = xyz + 3 * grid.Order[i];
-        const double px = p[0], py = p[1], pz = p[2];
-        double* d = dist.data();
-        for (Index s = 0; s < own; ++s)
-        {
-          const double dx = px - sx[s], dy = py - sy[s], dz = pz - sz[s];
-          d[s] = dx * dx + dy * dy + dz * dz;
-        }
+        Index best = -1;
         double bestD = Infinity;
-        const Index local = FirstMinimum(d, own, bestD);
-        const Index best = local < 0 ? -1 : first + local;
+        for (Index s = first; s < last; ++s)
+        {
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD)
+          {
+            bestD = d;
+            best = s;
+          }
+        }
         assign[i] = best;
         distance2[i] = bestD;
         reach = std::max(reach, bestD);
@@ -280,46 +227,26 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
         continue;
       }
       // Pass 2: those candidates, nearest the box first; a point lies in the
-      // box, so it is at least the box gap away from a candidate. The result
-      // is the least (distance, sample index) over the candidates: blocks of
-      // candidates are evaluated whole (one past the first gap beyond the
-      // current best distance cannot win), padded with far dummies.
+      // box, so it is at least the box gap away from a candidate (ties: the
+      // lower sample index).
       std::sort(candidates.begin(), candidates.end());
-      const Index m = static_cast<Index>(candidates.size());
-      const Index padded = (m + Block - 1) / Block * Block;
-      cx.resize(static_cast<std::size_t>(padded));
-      cy.resize(static_cast<std::size_t>(padded));
-      cz.resize(static_cast<std::size_t>(padded));
-      for (Index k = 0; k < padded; ++k)
-      {
-        const double* t = k < m ? pos + 3 * candidates[k].second : nullptr;
-        cx[k] = t ? t[0] : Infinity;
-        cy[k] = t ? t[1] : Infinity;
-        cz[k] = t ? t[2] : Infinity;
-      }
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
         const double* p = xyz + 3 * grid.Order[i];
-        const double px = p[0], py = p[1], pz = p[2];
         Index best = assign[i];
         double bestD = distance2[i];
-        for (Index k0 = 0; k0 < m && !(candidates[k0].first > bestD); k0 += Block)
+        for (const auto& candidate : candidates)
         {
-          double* d = dist.data();
-          for (Index k = 0; k < Block; ++k)
+          if (candidate.first > bestD)
           {
-            const double dx = px - cx[k0 + k], dy = py - cy[k0 + k], dz = pz - cz[k0 + k];
-            d[k] = dx * dx + dy * dy + dz * dz;
+            break;
           }
-          const Index n = std::min(Block, m - k0);
-          for (Index k = 0; k < n; ++k)
+          const Index s = candidate.second;
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
           {
-            const Index s = candidates[k0 + k].second;
-            if (d[k] < bestD || (d[k] == bestD && s < best))
-            {
-              bestD = d[k];
-              best = s;
-            }
+            bestD = d;
+            best = s;
           }
         }
         assign[i] = best;
@@ -333,49 +260,80 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
   const std::vector<Index>& assign, SampleSet& samples, const Execution& execution)
 {
   std::vector<double> next(samples.Position);
+  // The points assigned to a cell's samples lie in its ring (the assignment
+  // searches rings, which are symmetric). A chunk of cells scans the union
+  // of its cells' rings once, in increasing cell order, which is each ring's
+  // visiting order: every sample sums its points in the same order as a scan
+  // of its own ring would.
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
-    std::vector<double> sum;
-    std::vector<Index> count;
+    const Index firstSample = samples.Start[b], lastSample = samples.Start[e];
+    if (lastSample == firstSample)
+    {
+      return;
+    }
+    Index lo = std::numeric_limits<Index>::max(), hi = -1;
     for (Index c = b; c < e; ++c)
     {
-      const Index first = samples.Start[c], budget = samples.Start[c + 1] - first;
-      if (budget == 0)
+      if (samples.Start[c + 1] == samples.Start[c])
       {
         continue;
       }
-      sum.assign(static_cast<std::size_t>(3 * budget), 0.0);
-      count.assign(static_cast<std::size_t>(budget), 0);
-      // Points assigned to c's samples lie in c's ring; fixed visiting order.
-      const Index* ring = neighbors.Of(c);
       for (int k = 0; k < 27; ++k)
       {
-        const Index nb = ring[k];
-        if (nb < 0)
+        const Index nb = neighbors.Of(c)[k];
+        if (nb >= 0)
         {
-          continue;
+          lo = std::min(lo, nb);
+          hi = std::max(hi, nb);
         }
-        for (Index i = grid.CellStart[nb]; i < grid.CellStart[nb + 1]; ++i)
+      }
+    }
+    std::vector<char> inRing(static_cast<std::size_t>(hi - lo + 1), 0);
+    for (Index c = b; c < e; ++c)
+    {
+      if (samples.Start[c + 1] == samples.Start[c])
+      {
+        continue;
+      }
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = neighbors.Of(c)[k];
+        if (nb >= 0)
         {
-          const Index s = assign[i] - first;
-          if (s >= 0 && s < budget)
+          inRing[nb - lo] = 1;
+        }
+      }
+    }
+    const Index owned = lastSample - firstSample;
+    std::vector<double> sum(static_cast<std::size_t>(3 * owned), 0.0);
+    std::vector<Index> count(static_cast<std::size_t>(owned), 0);
+    for (Index nb = lo; nb <= hi; ++nb)
+    {
+      if (!inRing[nb - lo])
+      {
+        continue;
+      }
+      for (Index i = grid.CellStart[nb]; i < grid.CellStart[nb + 1]; ++i)
+      {
+        const Index s = assign[i] - firstSample;
+        if (s >= 0 && s < owned)
+        {
+          const double* p = xyz + 3 * grid.Order[i];
+          ++count[s];
+          for (int a = 0; a < 3; ++a)
           {
-            const double* p = xyz + 3 * grid.Order[i];
-            ++count[s];
-            for (int a = 0; a < 3; ++a)
-            {
-              sum[3 * s + a] += p[a];
-            }
+            sum[3 * s + a] += p[a];
           }
         }
       }
-      for (Index s = 0; s < budget; ++s)
+    }
+    for (Index s = 0; s < owned; ++s)
+    {
+      if (!samples.Fixed[firstSample + s] && count[s] > 0)
       {
-        if (!samples.Fixed[first + s] && count[s] > 0)
+        for (int a = 0; a < 3; ++a)
         {
-          for (int a = 0; a < 3; ++a)
-          {
-            next[3 * (first + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
-          }
+          next[3 * (firstSample + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
         }
       }
     }
