@@ -35,10 +35,13 @@ set(ASM_FILTERS_CORE
   Curvature
   Metrics
 )
-# Private VTK-side helpers of the filters: <Name>.h + <Name>.cxx in Filters/,
-# not wrapped and not installed.
+# Private VTK-layer helpers (not wrapped, not installed): <Name>.h + <Name>.cxx
+# in Filters/. vtkASMPointDataAggregation: the attribute aggregation;
+# vtkASMDistributed*: the MPI communication (VTK::ParallelCore).
 set(ASM_FILTERS_PRIVATE
   vtkASMPointDataAggregation
+  vtkASMDistributed
+  vtkASMDistributedMetrics
 )
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
@@ -63,6 +66,10 @@ endforeach ()
 foreach (_asm_core IN LISTS ASM_FILTERS_CORE)
   list(APPEND _asm_sources "${_asm_filters_dir}/Core/${_asm_core}.cxx")
   list(APPEND _asm_private_headers "${_asm_filters_dir}/Core/${_asm_core}.h")
+endforeach ()
+foreach (_asm_private IN LISTS ASM_FILTERS_PRIVATE)
+  list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_private}.cxx")
+  list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_private}.h")
 endforeach ()
 foreach (_asm_header IN LISTS ASM_FILTERS_EXTRA_PRIVATE_HEADERS)
   list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_header}")

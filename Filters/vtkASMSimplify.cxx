@@ -2,6 +2,7 @@
 #include "vtkASMSimplify.h"
 
 #include "Core/Grid.h"
+#include "vtkASMDistributed.h"
 #include "Core/Neighbors.h"
 #include "Core/Simplify.h"
 #include "vtkASMFilterUtilities.h"
@@ -17,6 +18,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -34,6 +36,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkASMSimplify);
+vtkCxxSetObjectMacro(vtkASMSimplify, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -41,7 +44,16 @@ using asmcore::Index;
 } // namespace
 
 //------------------------------------------------------------------------------
-vtkASMSimplify::vtkASMSimplify() = default;
+vtkASMSimplify::vtkASMSimplify()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+//------------------------------------------------------------------------------
+vtkASMSimplify::~vtkASMSimplify()
+{
+  this->SetController(nullptr);
+}
 
 //------------------------------------------------------------------------------
 int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
@@ -87,8 +99,12 @@ int vtkASMSimplify::RequestData(
   {
     return 1; // empty output
   }
-  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
-  if (numberOfPoints == 0 || !input->GetPoints())
+  vtkIdType numberOfPoints = input->GetPoints() ? input->GetNumberOfPoints() : 0;
+  // MPI runs (vtkASMDistributed.h): every process takes part in the
+  // collectives, with or without points of its own.
+  const bool distributed = asmvtk::IsDistributed(this->Controller, this->AlwaysDistribute);
+  const asmvtk::Communication comm(distributed ? this->Controller : nullptr);
+  if (numberOfPoints == 0 && !distributed)
   {
     vtkWarningMacro(<< "The input has no points: the output is empty.");
     return 1;
@@ -97,9 +113,24 @@ int vtkASMSimplify::RequestData(
   // Coordinates, finite points, and the requested output size.
   std::unique_ptr<double[]> coordinateCopy;
   std::vector<Index> ids;
-  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids);
-  const auto valid = static_cast<vtkIdType>(ids.size());
-  const vtkIdType skipped = numberOfPoints - valid;
+  const double* xyz = numberOfPoints > 0
+    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids)
+    : nullptr;
+  vtkIdType valid = static_cast<vtkIdType>(ids.size());
+  vtkIdType skipped = numberOfPoints - valid;
+  int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
+  if (distributed)
+  {
+    ids = asmvtk::WithoutDuplicateGhosts(input, ids);
+    valid = comm.Sum(static_cast<Index>(ids.size()));
+    skipped = comm.Sum(static_cast<Index>(skipped));
+    pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
+    if (valid == 0)
+    {
+      vtkWarningMacro(<< "The input has no points: the output is empty.");
+      return 1;
+    }
+  }
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped << " input points have NaN or infinite coordinates; they are ignored.");
@@ -120,9 +151,45 @@ int vtkASMSimplify::RequestData(
     target = valid;
   }
 
+  asmcore::SimplifyParameters parameters;
+  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
+                                        : asmcore::SimplifyMode::FeaturePreserving;
+  if (distributed && parameters.Mode != asmcore::SimplifyMode::Paper)
+  {
+    // The feature-preserving steps (cross-cell validation and Lloyd, hole
+    // filling, its budget rule) are not distributed yet.
+    vtkWarningMacro(<< "Distributed runs use the paper's mode (Mode = Paper) for now.");
+    parameters.Mode = asmcore::SimplifyMode::Paper;
+  }
+  parameters.NumberOfSamples = target;
+  parameters.CellSize = this->CellSize;
+  parameters.SamplesPerCell = this->SamplesPerCell;
+  parameters.Weight = this->WeightMode == SURFACE_VARIATION_WEIGHT
+    ? asmcore::WeightMode::SurfaceVariation
+    : asmcore::WeightMode::Uniform;
+  parameters.CurvatureWeight = this->CurvatureWeight;
+  vtkPointData* inPD = input->GetPointData();
+  asmvtk::SimplifyShare share;
+  if (distributed)
+  {
+    // One grid, owners, halo, budgets; then the core runs on this process's
+    // cells (owned and halo) as if they were the whole input.
+    share = asmvtk::PrepareSimplify(comm, input, xyz, ids, parameters);
+    for (const std::string& dropped : share.Cloud.Dropped)
+    {
+      vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
+    }
+    xyz = share.Cloud.Xyz.data();
+    ids = share.Cloud.Ids;
+    numberOfPoints = static_cast<vtkIdType>(ids.size());
+    inPD = share.Cloud.PointData;
+    parameters.Grid = &share.Grid;
+    parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };
+    parameters.CloudCentroid = share.Centroid;
+  }
+
   std::unique_ptr<double[]> normalCopy;
   const double* normals = nullptr;
-  vtkPointData* inPD = input->GetPointData();
   if (vtkDataArray* inNormals = inPD->GetNormals())
   {
     if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
@@ -131,24 +198,15 @@ int vtkASMSimplify::RequestData(
     }
   }
 
-  asmcore::SimplifyParameters parameters;
-  parameters.NumberOfSamples = target;
-  parameters.CellSize = this->CellSize;
-  parameters.SamplesPerCell = this->SamplesPerCell;
   parameters.Alpha = this->Alpha;
   parameters.ErrorTolerance = this->ErrorTolerance;
   if (this->RelativeErrorTolerance && this->ErrorTolerance > 0.0)
   {
-    parameters.ErrorTolerance *= asmcore::ComputeBounds(xyz, ids).Diagonal();
+    parameters.ErrorTolerance *=
+      distributed ? share.Diagonal : asmcore::ComputeBounds(xyz, ids).Diagonal();
   }
-  parameters.Weight = this->WeightMode == SURFACE_VARIATION_WEIGHT
-    ? asmcore::WeightMode::SurfaceVariation
-    : asmcore::WeightMode::Uniform;
-  parameters.CurvatureWeight = this->CurvatureWeight;
   parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
   parameters.Snap = this->SnapToInputPoints;
-  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
-                                        : asmcore::SimplifyMode::FeaturePreserving;
   parameters.ValidateKeyPoints = this->ValidateKeyPoints;
   parameters.KeyPointRadius = this->KeyPointRadius;
   parameters.KeyPointProminence = this->KeyPointProminence;
@@ -161,12 +219,23 @@ int vtkASMSimplify::RequestData(
   parameters.InputPointSamples = this->InputPointSamples;
   parameters.FillHoles = this->FillHoles;
   parameters.HoleFillFraction = this->HoleFillFraction;
-  parameters.CoordinateEpsilon = input->GetPoints()->GetDataType() == VTK_DOUBLE
+  parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
 
-  const asmcore::SimplifyResult result = asmcore::Simplify(
+  asmcore::SimplifyResult result = asmcore::Simplify(
     xyz, ids, normals, parameters, asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9));
+  if (distributed)
+  {
+    // Figures of the whole cloud: sums and maxima over the processes.
+    const Index keys = comm.Sum(result.NumberOfKeyPoints);
+    const double sum = comm.Sum(result.AKPE * static_cast<double>(result.NumberOfKeyPoints));
+    result.MKPE = comm.Max(result.MKPE);
+    result.AKPE = keys > 0 ? sum / static_cast<double>(keys) : 0.0;
+    result.NumberOfKeyPoints = keys;
+    result.CellSize = share.Grid.CellSize;
+    result.Aborted = comm.Max(result.Aborted ? 1.0 : 0.0) > 0.0;
+  }
   if (result.Aborted)
   {
     vtkWarningMacro(<< "Aborted: the output is empty.");
@@ -184,7 +253,7 @@ int vtkASMSimplify::RequestData(
   vtkNew<vtkPoints> points;
   const bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
     (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION &&
-      input->GetPoints()->GetDataType() == VTK_DOUBLE);
+      pointsType == VTK_DOUBLE);
   points->SetDataType(doublePrecision ? VTK_DOUBLE : VTK_FLOAT);
   points->SetNumberOfPoints(count);
   auto keyFlags = asmvtk::NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
@@ -202,7 +271,8 @@ int vtkASMSimplify::RequestData(
     keyFlags->SetValue(s, sample.Key ? 1 : 0);
     clusterSizes->SetValue(s, sample.ClusterSize);
     variation->SetValue(s, sample.SurfaceVariation);
-    originalIds->SetValue(s, sample.Representative);
+    originalIds->SetValue(s,
+      distributed ? share.Cloud.SourceId[sample.Representative] : sample.Representative);
     pcaNormals->SetTuple(s, sample.Normal);
   }
   output->SetPoints(points);
@@ -216,6 +286,16 @@ int vtkASMSimplify::RequestData(
   outPD->AddArray(clusterSizes);
   outPD->AddArray(variation);
   outPD->AddArray(originalIds);
+  if (distributed)
+  {
+    // Which process's input vtkOriginalPointIds refers to.
+    auto processIds = asmvtk::NewArray<vtkIdTypeArray>("vtkOriginalProcessIds", 1, count);
+    for (vtkIdType s = 0; s < count; ++s)
+    {
+      processIds->SetValue(s, share.Cloud.SourceRank[result.Samples[s].Representative]);
+    }
+    outPD->AddArray(processIds);
+  }
   if (nameTaken || outPD->GetNormals())
   {
     outPD->AddArray(pcaNormals);
@@ -293,4 +373,6 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "AlwaysDistribute: " << this->AlwaysDistribute << "\n";
 }

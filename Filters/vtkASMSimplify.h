@@ -76,6 +76,18 @@
  * The output is deterministic: the same input, parameters and RandomSeed give
  * the same points in the same order whatever the number of threads.
  *
+ * Parallel (MPI) runs, e.g. pvbatch --mpi or a pvserver with several
+ * processes: the points of all processes are simplified as one cloud,
+ * however they are split (one global grid, one owner process per grid cell,
+ * points redistributed to the owners with a halo of neighbouring cells, one
+ * budget of exactly N_s over all processes, global AKPE/MKPE); each process
+ * outputs the samples of the cells it owns, with "vtkOriginalProcessIds"
+ * next to "vtkOriginalPointIds". With AlwaysDistribute on, 1, 2, 3...
+ * processes give the same points (up to floating-point summation order).
+ * Distributed runs use Mode PAPER for now (a warning says so when
+ * FEATURE_PRESERVING is selected). Design and limits: vtkASMDistributed.h.
+ * Without MPI nothing changes.
+ *
  * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
  */
 
@@ -84,6 +96,8 @@
 
 #include "vtkASMFiltersModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+
+class vtkMultiProcessController;
 
 class VTKASMFILTERS_EXPORT vtkASMSimplify : public vtkPolyDataAlgorithm
 {
@@ -397,9 +411,35 @@ public:
   vtkGetMacro(OutputPointsPrecision, int);
   ///@}
 
+  ///@{
+  /**
+   * The processes of a parallel run; default the global controller. With an
+   * MPI controller (pvbatch --mpi, pvserver) the points of all processes are
+   * simplified together, as one cloud, whatever the split: one grid, one
+   * owner per cell, one budget adding up to N_s over the processes; each
+   * process outputs the samples of the cells it owns. Without MPI (null or
+   * dummy controller) the filter works on its input alone.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
+   * With several processes the run is always distributed. When on, a run on
+   * one process is distributed too (a cell's points taken in coordinate
+   * order instead of input order), so that 1, 2, 3... processes give the
+   * same points; default off: one process (or no controller) runs the serial
+   * algorithm, unchanged.
+   */
+  vtkSetMacro(AlwaysDistribute, bool);
+  vtkGetMacro(AlwaysDistribute, bool);
+  vtkBooleanMacro(AlwaysDistribute, bool);
+  ///@}
+
 protected:
   vtkASMSimplify();
-  ~vtkASMSimplify() override = default;
+  ~vtkASMSimplify() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -435,6 +475,8 @@ protected:
   bool GenerateCurvature = true;
   int CurvatureNeighbors = 20;
   int OutputPointsPrecision = DEFAULT_PRECISION;
+  vtkMultiProcessController* Controller = nullptr;
+  bool AlwaysDistribute = false;
 
 private:
   vtkASMSimplify(const vtkASMSimplify&) = delete;

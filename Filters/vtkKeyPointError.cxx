@@ -4,6 +4,7 @@
 #include "Core/Grid.h"
 #include "Core/Metrics.h"
 #include "Core/Neighbors.h"
+#include "vtkASMDistributedMetrics.h"
 #include "vtkASMFilterUtilities.h"
 
 #include "vtkCellArray.h"
@@ -12,6 +13,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -26,6 +28,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkKeyPointError);
+vtkCxxSetObjectMacro(vtkKeyPointError, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -68,6 +71,13 @@ vtkKeyPointError::vtkKeyPointError()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+//------------------------------------------------------------------------------
+vtkKeyPointError::~vtkKeyPointError()
+{
+  this->SetController(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -107,7 +117,16 @@ int vtkKeyPointError::RequestData(
   }
   const Cloud orig(original);
   const Cloud simp(simplified);
-  if (orig.Ids.empty() || simp.Ids.empty())
+  const bool distributed = asmvtk::IsDistributed(this->Controller, false);
+  const asmvtk::Communication comm(distributed ? this->Controller : nullptr);
+  if (distributed &&
+    (comm.Sum(static_cast<Index>(orig.Ids.size())) == 0 ||
+      comm.Sum(static_cast<Index>(simp.Ids.size())) == 0))
+  {
+    vtkErrorMacro(<< "One of the clouds has no finite points on any process: nothing to measure.");
+    return 1;
+  }
+  if (!distributed && (orig.Ids.empty() || simp.Ids.empty()))
   {
     vtkErrorMacro(<< "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
                   << " cloud has no finite points: nothing to measure.");
@@ -118,18 +137,18 @@ int vtkKeyPointError::RequestData(
     vtkWarningMacro(<< orig.Skipped << " original and " << simp.Skipped
                     << " simplified points have NaN or infinite coordinates; they are ignored.");
   }
-  if (simp.Ids.size() > orig.Ids.size())
+  if (!distributed && simp.Ids.size() > orig.Ids.size())
   {
     vtkWarningMacro(<< "The simplified cloud has more points (" << simp.Ids.size()
                     << ") than the original (" << orig.Ids.size() << "): check the inputs' order.");
   }
-  if (!Overlap(asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
+  if (!distributed &&
+    !Overlap(asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
   {
     vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
                        "between unrelated clouds.");
   }
 
-  const asmcore::Neighbors originalTree(orig.Xyz, orig.Ids);
   asmcore::ComparisonOptions options;
   options.Rule.Alpha = this->Alpha;
   options.Rule.CoordinateEpsilon = original->GetPoints()->GetDataType() == VTK_DOUBLE
@@ -140,8 +159,30 @@ int vtkKeyPointError::RequestData(
   options.Measure = this->DistanceMeasure == SQUARED_DISTANCE ? asmcore::KeyPointDistance::Squared
                                                               : asmcore::KeyPointDistance::Euclidean;
   options.PlaneNeighbors = this->PlaneNeighbors;
-  const asmcore::Comparison result = asmcore::CompareClouds(orig.Xyz, orig.Ids, originalTree,
-    simp.Xyz, simp.Ids, options, asmvtk::SMPExecution(this, 0.0, 0.8));
+  asmvtk::DistributedComparison shared;
+  if (distributed)
+  {
+    // Figures of the whole clouds (vtkASMDistributedMetrics.h).
+    std::vector<double> normals;
+    vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
+    if (inNormals && inNormals->GetNumberOfComponents() == 3)
+    {
+      for (Index id : simp.Ids)
+      {
+        const double* v = inNormals->GetTuple3(id);
+        normals.insert(normals.end(), v, v + 3);
+      }
+    }
+    shared = asmvtk::CompareDistributed(comm, orig.Xyz, orig.Ids, simp.Xyz, simp.Ids,
+      inNormals && inNormals->GetNumberOfComponents() == 3 ? normals.data() : nullptr, options,
+      this->GenerateCurvature ? this->CurvatureNeighbors : 0);
+  }
+  const asmcore::Neighbors originalTree =
+    distributed ? asmcore::Neighbors() : asmcore::Neighbors(orig.Xyz, orig.Ids);
+  const asmcore::Comparison result = distributed
+    ? shared.Figures
+    : asmcore::CompareClouds(orig.Xyz, orig.Ids, originalTree, simp.Xyz, simp.Ids, options,
+        asmvtk::SMPExecution(this, 0.0, 0.8));
   if (result.Aborted)
   {
     vtkWarningMacro(<< "Aborted: the output is empty.");
@@ -162,7 +203,21 @@ int vtkKeyPointError::RequestData(
   }
   pd->AddArray(error);
 
-  if (this->GenerateCurvature)
+  if (this->GenerateCurvature && distributed)
+  {
+    auto mean = asmvtk::NewArray<vtkDoubleArray>("MeanCurvature", 1, n);
+    auto variation = asmvtk::NewArray<vtkDoubleArray>("NeighborhoodSurfaceVariation", 1, n);
+    mean->Fill(std::numeric_limits<double>::quiet_NaN());
+    variation->Fill(std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < simp.Ids.size(); ++i)
+    {
+      mean->SetValue(simp.Ids[i], shared.Curvature[i].MeanCurvature);
+      variation->SetValue(simp.Ids[i], shared.Curvature[i].SurfaceVariation);
+    }
+    pd->AddArray(mean);
+    pd->AddArray(variation);
+  }
+  else if (this->GenerateCurvature)
   {
     // Estimated at the finite simplified points, signed by their normals.
     std::vector<double> queries, normals;
@@ -204,8 +259,11 @@ int vtkKeyPointError::RequestData(
   const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : 1.0;
   const double keyScale = this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
   const std::vector<std::pair<const char*, double>> figures = {
-    { "NumberOfOriginalPoints", static_cast<double>(orig.Ids.size()) },
-    { "NumberOfSimplifiedPoints", static_cast<double>(simp.Ids.size()) },
+    { "NumberOfOriginalPoints",
+      static_cast<double>(distributed ? shared.OriginalPoints : static_cast<Index>(orig.Ids.size())) },
+    { "NumberOfSimplifiedPoints",
+      static_cast<double>(
+        distributed ? shared.SimplifiedPoints : static_cast<Index>(simp.Ids.size())) },
     { "CellSize", result.CellSize },
     { "NumberOfOriginalKeyPoints", static_cast<double>(result.OriginalKeyPoints) },
     { "NumberOfSimplifiedKeyPoints", static_cast<double>(result.SimplifiedKeyPoints) },
@@ -252,4 +310,5 @@ void vtkKeyPointError::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlaneNeighbors: " << this->PlaneNeighbors << "\n";
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -47,6 +47,7 @@
 
 class vtkAlgorithmOutput;
 class vtkDataObject;
+class vtkMultiProcessController;
 
 class VTKASMFILTERS_EXPORT vtkKeyPointError : public vtkPolyDataAlgorithm
 {
@@ -134,9 +135,21 @@ public:
   vtkGetMacro(CurvatureNeighbors, int);
   ///@}
 
+  ///@{
+  /**
+   * The processes of a parallel run; default the global controller. With
+   * several processes (pvbatch --mpi, pvserver) both clouds may be split
+   * over them in any way: the figures are those of the whole clouds, the
+   * same on every process (see vtkASMDistributedMetrics.h), and each process
+   * outputs its own simplified points.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
 protected:
   vtkKeyPointError();
-  ~vtkKeyPointError() override = default;
+  ~vtkKeyPointError() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
@@ -149,6 +162,7 @@ protected:
   int PlaneNeighbors = 8;
   bool GenerateCurvature = true;
   int CurvatureNeighbors = 20;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkKeyPointError(const vtkKeyPointError&) = delete;

@@ -308,7 +308,8 @@ double EffectiveOccupiedCells(
   return count;
 }
 
-// The cell edge for which count(spec) is about targetCells.
+// The cell edge for which count(spec) is about targetCells (> 1), for a
+// cloud of largest extent > 0.
 template <typename Count>
 double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count)
 {
@@ -348,6 +349,21 @@ double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count)
   return bestH;
 }
 } // namespace
+
+double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
+  const std::function<double(const GridSpec&)>& countOccupied)
+{
+  const double maxExtent = bounds.MaxExtent();
+  if (empty || !(maxExtent > 0.0))
+  {
+    return GridSpec::Make(bounds, 0.0).CellSize; // one cell holds everything
+  }
+  if (targetCells <= 1.0)
+  {
+    return maxExtent * (1.0 + 1e-9); // one cell for the whole cloud
+  }
+  return SearchCellSize(bounds, targetCells, countOccupied);
+}
 
 double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
   double targetCells, const Execution& execution)

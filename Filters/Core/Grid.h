@@ -97,6 +97,11 @@ VTKASMFILTERS_EXPORT Index CountOccupiedCells(const double* xyz, const std::vect
 /// in log(cell size) with the measured occupancy, a few passes over the data.
 VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids,
   const Bounds& bounds, double targetCells, const Execution& execution = {});
+
+/// The same search with the occupancy counted by `countOccupied` (e.g. the
+/// distinct non-empty cells over all processes of a distributed run).
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targetCells,
+  bool empty, const std::function<double(const GridSpec&)>& countOccupied);
 } // namespace asmcore
 
 #endif

@@ -111,9 +111,10 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
 // Every point that no sample took (cells with a budget of 0, key clusters
 // left out by §3.3 (iv)) joins the sample nearest to it, after that sample's
 // own members: the member lists become a partition of the points, and the
-// samples do not move.
+// samples do not move. Points in slots marked in `haloSlot` (halo cells of
+// a distributed run, owned by another process) are dropped instead.
 void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, SimplifyResult& result,
-  const Execution& execution)
+  const std::vector<char>& haloSlot, const Execution& execution)
 {
   const Index total = static_cast<Index>(ids.size());
   // The member slots no sample covers hold the unclaimed points.
@@ -132,7 +133,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   unclaimed.reserve(static_cast<std::size_t>(total - claimed));
   for (Index slot = 0; slot < total; ++slot)
   {
-    if (!covered[slot])
+    if (!covered[slot] && (haloSlot.empty() || !haloSlot[slot]))
     {
       unclaimed.push_back(result.Members[slot]);
     }
@@ -173,7 +174,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
     }
   }
   std::vector<Index> members;
-  members.reserve(static_cast<std::size_t>(total));
+  members.reserve(static_cast<std::size_t>(claimed) + unclaimed.size());
   for (Index s = 0; s < samples; ++s)
   {
     Sample& sample = result.Samples[s];
@@ -194,30 +195,44 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
-std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellGrid& grid,
-  const SimplifyParameters& parameters, double exponent, std::vector<Index>& capacity)
+std::vector<double> CellShares(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const SimplifyParameters& parameters, double exponent)
 {
-  const Index cells = grid.NumberOfCells();
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  capacity.resize(static_cast<std::size_t>(cells));
+  const std::size_t cells = capacity.size();
   double meanVariation = 0.0;
-  for (Index c = 0; c < cells; ++c)
+  Index total = 0;
+  for (std::size_t c = 0; c < cells; ++c)
   {
-    capacity[c] = grid.CellSizeOf(c);
-    meanVariation += frames[c].SurfaceVariation() * static_cast<double>(capacity[c]);
+    meanVariation += variation[c] * static_cast<double>(capacity[c]);
+    total += capacity[c];
   }
-  meanVariation /= static_cast<double>(grid.Order.size());
-  for (Index c = 0; c < cells; ++c)
+  meanVariation /= static_cast<double>(std::max<Index>(1, total));
+  std::vector<double> share(cells);
+  for (std::size_t c = 0; c < cells; ++c)
   {
     double weight = 1.0;
     if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
     {
-      weight += parameters.CurvatureWeight * frames[c].SurfaceVariation() / meanVariation;
+      weight += parameters.CurvatureWeight * variation[c] / meanVariation;
     }
     const auto n = static_cast<double>(capacity[c]);
     share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));
   }
   return share;
+}
+
+std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellGrid& grid,
+  const SimplifyParameters& parameters, double exponent, std::vector<Index>& capacity)
+{
+  const Index cells = grid.NumberOfCells();
+  capacity.resize(static_cast<std::size_t>(cells));
+  std::vector<double> variation(static_cast<std::size_t>(cells));
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    variation[c] = frames[c].SurfaceVariation();
+  }
+  return CellShares(capacity, variation, parameters, exponent);
 }
 
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
@@ -229,26 +244,38 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
-  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  const Index target = parameters.CellBudget
+    ? total
+    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
   if (total == 0 || target == 0)
   {
     return result;
   }
 
   // 1. Hash the points into the grid.
-  const Bounds bounds = ComputeBounds(xyz, ids, execution);
-  double cellSize = parameters.CellSize;
-  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+  GridSpec spec;
+  if (parameters.Grid)
   {
-    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
+    spec = *parameters.Grid;
+  }
+  else
+  {
+    const Bounds bounds = ComputeBounds(xyz, ids, execution);
+    double cellSize = parameters.CellSize;
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+    {
+      const double targetCells =
+        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
+    }
+    spec = GridSpec::Make(bounds, cellSize);
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;
@@ -273,9 +300,28 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 3. Budgets (Eq. 4), exact in total.
-  std::vector<Index> capacity;
-  const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
-  const std::vector<Index> budget = ApportionBudget(share, capacity, target);
+  std::vector<Index> budget;
+  std::vector<char> haloSlot; // member slots of halo cells (distributed runs)
+  if (parameters.CellBudget)
+  {
+    budget.resize(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      const Index b = parameters.CellBudget(grid.CellKey[c]);
+      budget[c] = std::min(grid.CellSizeOf(c), std::max<Index>(0, b));
+      if (b < 0)
+      {
+        haloSlot.resize(static_cast<std::size_t>(total), 0);
+        std::fill(haloSlot.begin() + grid.CellStart[c], haloSlot.begin() + grid.CellStart[c + 1], 1);
+      }
+    }
+  }
+  else
+  {
+    std::vector<Index> capacity;
+    const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
+    budget = ApportionBudget(share, capacity, target);
+  }
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
@@ -285,11 +331,18 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   result.Members.assign(static_cast<std::size_t>(total), -1);
 
   Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
-  for (Index id : ids)
+  if (parameters.CloudCentroid)
   {
-    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
   }
-  cloudCentroid /= static_cast<double>(total);
+  else
+  {
+    for (Index id : ids)
+    {
+      cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+    }
+    cloudCentroid /= static_cast<double>(total);
+  }
 
   KeyPointRule rule;
   rule.Alpha = parameters.Alpha;
@@ -422,7 +475,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     }
   }
 
-  AttachUnclaimedPoints(xyz, ids, result, execution);
+  AttachUnclaimedPoints(xyz, ids, result, haloSlot, execution);
 
   // Key point error of the run, summed in sample order (deterministic).
   double sum = 0.0;

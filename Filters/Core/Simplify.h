@@ -8,6 +8,7 @@
 #define asm_core_Simplify_h
 
 #include "Common.h"
+#include "Grid.h"
 
 #include <cfloat>
 
@@ -59,7 +60,27 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
   int HoleFillRounds = 2;         ///< rounds of hole filling, each followed by a Lloyd step
+
+  /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.
+  /// Every process calls Simplify on the points of the cells it owns plus a
+  /// halo of neighbouring cells, with the agreed grid and budgets.
+  ///@{
+  const GridSpec* Grid = nullptr; ///< the grid to use instead of one fitted to the points
+  /// Budget N_c of the cell with this key, apportioned over all processes;
+  /// -1 for halo cells (owned by another process: neighbours only, no
+  /// samples, and their points join no sample here). Replaces Eq. 4 on the
+  /// local points; NumberOfSamples is then ignored.
+  std::function<Index(std::uint64_t cellKey)> CellBudget;
+  const double* CloudCentroid = nullptr; ///< centroid of the whole cloud (orients normals)
+  ///@}
 };
+
+/// The shares w_c * n_c^exponent of Eq. 4 of cells holding `capacity` points
+/// each, with surface variations `variation`, listed in ascending cell key
+/// order (the order matters only to floating-point rounding of the mean).
+VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const SimplifyParameters& parameters,
+  double exponent = 1.0);
 
 /// One output sample: a cluster of input points.
 struct VTKASMFILTERS_EXPORT Sample

@@ -207,13 +207,23 @@ TEST(HostileInputs, OnePercentFarOutliers)
   }
   FilterRun clean;
   clean.Count(1000);
+  clean.Filter->SetModeToPaper();
   const double cleanCell = FieldValue(clean.Execute(ToPolyData(asmtest::Sphere(20000, 1.0, 8))), "CellSize");
+
+  // The default feature-preserving mode gives every non-empty cell a sample
+  // first (CoverEveryCell), so each isolated outlier keeps one.
+  FilterRun covering;
+  covering.Count(1000);
+  vtkPolyData* covered = covering.Execute(ToPolyData(c));
+  ASSERT_EQ(covered->GetNumberOfPoints(), 1000);
+  ExpectAllFinite(covered);
 
   FilterRun run;
   // Proportional budgets (Eq. 4): the paper's mode. The feature-preserving
   // default gives every outlier's cell a sample on purpose (CoverEveryCell).
   run.Filter->SetModeToPaper();
   run.Count(1000);
+  run.Filter->SetModeToPaper();
   vtkPolyData* out = run.Execute(ToPolyData(c));
   ASSERT_EQ(out->GetNumberOfPoints(), 1000);
   ExpectAllFinite(out);

@@ -45,6 +45,8 @@ expected_defaults = {
     "InputPointSamples": 1,
     "FillHoles": 1,
     "HoleFillFraction": 0.02,
+    # Parallel (MPI) runs.
+    "AlwaysDistribute": 0,
 }
 # Nothing in the XML that the test does not know about.
 listed = set(asm.ListProperties()) - {"Input"}

@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Private helpers of the ASM filters for distributed (MPI) runs, e.g.
+ * `mpiexec -n K pvbatch --mpi`: the communication, written against
+ * VTK::ParallelCore only (vtkMultiProcessController), so the module still
+ * builds against a plain VTK without MPI. Not wrapped, not installed.
+ *
+ * Design (results do not depend on K or on how the input is split):
+ *
+ * 1. One global grid. The finite points' bounds are reduced over the
+ *    processes; the automatic cell size runs the serial search
+ *    (asmcore::AutomaticCellSize) with the number of DISTINCT non-empty cells
+ *    over all processes (each process sends its cell keys to the process
+ *    chosen by a hash of the key, which counts them once).
+ * 2. One owner per cell. Cells are cut into K slabs along the grid's longest
+ *    axis, balanced by point counts (a histogram of the axis index reduced
+ *    over the processes). Every point is sent to the owner of its cell, and
+ *    to the processes owning a cell within HaloRings cells of it (halo
+ *    points: neighbours only, no samples; used by the curvature estimates).
+ *    Coordinates (as doubles) and every numeric point-data array travel in
+ *    one record per point, with the sending process and point id.
+ * 3. A canonical order. A process sorts the points it received by cell key,
+ *    then coordinates, then array values, so a cell's points reach the core
+ *    in the same order whatever the partition. The serial path orders them
+ *    by input id instead (and is left unchanged), which changes which key
+ *    points a cell keeps when its budget is below its key point count (about
+ *    1 sample in 8 moves on the bunny when the input order is shuffled).
+ *    So a one-process run uses this path only with AlwaysDistribute on; then
+ *    1, 2, 3... processes give the same points. (ParaView built with MPI
+ *    has an MPI controller with one process even in the built-in session,
+ *    so one process cannot tell "mpiexec -n 1" from a desktop session.)
+ * 4. One global budget. The owners' (cell key, point count, surface
+ *    variation) are gathered on process 0, which computes the shares of
+ *    Eq. 4 and apportions N_s exactly as the serial code does (cells in key
+ *    order, largest remainder), and scatters the budgets back.
+ * 5. Figures (AKPE, MKPE, counts) are sums and maxima reduced over the
+ *    processes; per-cell seeds come from the cell key, as in serial runs.
+ * 6. Curvature arrays are estimated by the owner of a sample's cell from the
+ *    owned and halo points: exact while a sample's CurvatureNeighbors
+ *    nearest input points lie within HaloRings cells (a cell holds about
+ *    SamplesPerCell / fraction points, e.g. 160 at 5 %, so 20 neighbours
+ *    are well inside; only with very few points per cell could a
+ *    neighbourhood reach past the halo, and the estimate would then use the
+ *    nearest points available).
+ *
+ * Only numeric point-data arrays travel (string arrays are dropped with a
+ * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
+ * The core runs unchanged on each process's points through hooks in
+ * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid); halo cells
+ * are passed to it too (budget -1) so cross-cell steps can see neighbours.
+ */
+#ifndef vtkASMDistributed_h
+#define vtkASMDistributed_h
+
+#include "Core/Grid.h"
+#include "Core/Simplify.h"
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkMultiProcessController;
+class vtkPointData;
+class vtkPointSet;
+
+namespace asmvtk
+{
+using asmcore::Index;
+
+/// Width of the halo, in grid cells, sent around the cells a process owns.
+constexpr int HaloRings = 2;
+
+/// True when the run takes the distributed path: `controller` has several
+/// processes, or `always` and there is a controller (one process then gives
+/// the same answer as K). Otherwise the serial path, unchanged.
+bool IsDistributed(vtkMultiProcessController* controller, bool always);
+
+/// Collective operations of one run (every process must make the same calls
+/// in the same order).
+class Communication
+{
+public:
+  explicit Communication(vtkMultiProcessController* controller);
+  int Rank() const { return this->LocalRank; }
+  int Size() const { return this->Processes; }
+
+  Index Sum(Index value) const;
+  double Sum(double value) const;
+  double Max(double value) const;
+  void Sum(std::vector<double>& values) const;
+  void Sum(std::vector<long long>& values) const;
+  /// Union of the processes' bounds (invalid ones ignored).
+  asmcore::Bounds Union(const asmcore::Bounds& local) const;
+  /// send[r] goes to process r; returns what every process sent to this
+  /// one, concatenated in process order. Empties `send`.
+  std::vector<double> Exchange(std::vector<std::vector<double>>& send) const;
+  std::vector<long long> Exchange(std::vector<std::vector<long long>>& send) const;
+  /// Every process's `local`, concatenated in process order, on every process.
+  /// `offset` (optional): where this process's values start in the result.
+  std::vector<double> AllGather(const std::vector<double>& local, Index* offset = nullptr) const;
+  vtkMultiProcessController* Controller() const { return this->Ctrl; }
+
+private:
+  vtkMultiProcessController* Ctrl;
+  int LocalRank = 0;
+  int Processes = 1;
+};
+
+/// Distinct non-empty cells of `spec` over all processes (collective).
+Index CountOccupiedCells(const Communication& comm, const double* xyz,
+  const std::vector<Index>& ids, const asmcore::GridSpec& spec);
+
+/// Which process owns each grid cell: slabs of the axis index along the
+/// grid's longest axis, balanced by point counts.
+struct SlabPartition
+{
+  asmcore::GridSpec Grid;
+  int Axis = 0;
+  std::vector<int> BinOwner; ///< owner of each bin of consecutive axis indices
+
+  std::int64_t AxisIndex(const double p[3]) const;
+  int OwnerOf(std::int64_t axisIndex) const;
+};
+
+/// Collective: the slabs of `grid` for the points xyz[3*id], id in ids.
+SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSpec& grid,
+  const double* xyz, const std::vector<Index>& ids);
+
+/// The points a process holds after redistribution, in canonical order.
+struct LocalCloud
+{
+  std::vector<double> Xyz;                  ///< owned and halo points
+  std::vector<Index> Ids;                   ///< 0 .. n-1
+  std::vector<std::uint64_t> Keys;          ///< cell key of each point
+  std::vector<char> Owned;                  ///< 1: in a cell this process owns
+  std::vector<long long> SourceRank;        ///< process that held the point
+  std::vector<long long> SourceId;          ///< its point id there
+  vtkSmartPointer<vtkPointData> PointData;  ///< the transferred arrays
+  std::vector<std::string> Dropped;         ///< arrays not transferred (and why)
+};
+
+/// Collective: send every point (xyz[3*id], id in ids, with the numeric
+/// point-data arrays of `input`) to the owner of its cell and, as a halo
+/// point, to the owners of the cells within `haloRings` cells.
+LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
+  const std::vector<Index>& ids, const SlabPartition& partition, int haloRings);
+
+/// Collective: the budgets N_c of this process's cells (`keys`, with
+/// `capacity` points and surface variation `variation`), apportioned over
+/// every process's cells on process 0 as asmcore::Simplify does (shares of
+/// Eq. 4 in key order, ApportionBudget): they add up to `target` over all
+/// processes (or to the number of points, when smaller).
+std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<std::uint64_t>& keys,
+  const std::vector<Index>& capacity, const std::vector<double>& variation,
+  const asmcore::SimplifyParameters& parameters, Index target);
+
+/// A process's share of a distributed vtkASMSimplify run.
+struct SimplifyShare
+{
+  LocalCloud Cloud;                     ///< owned and halo points, canonical order
+  asmcore::GridSpec Grid;               ///< the global grid
+  std::vector<std::uint64_t> OwnedKeys; ///< the cells this process owns, ascending
+  std::vector<Index> Budgets;           ///< their budgets (global apportionment)
+  double Centroid[3] = { 0, 0, 0 };     ///< of the whole cloud
+  double Diagonal = 0.0;                ///< of the whole cloud's bounding box
+
+  /// Budget of a cell (0 for cells owned elsewhere: halo cells).
+  Index BudgetOf(std::uint64_t key) const;
+};
+
+/// Collective: global bounds and cell size (parameters.CellSize, or the
+/// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,
+/// redistribution with a halo of HaloRings cells, and the global budgets.
+SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
+  const std::vector<Index>& ids, const asmcore::SimplifyParameters& parameters);
+
+/// `ids` without the points flagged as duplicates of another process's
+/// points (vtkGhostType & DUPLICATEPOINT).
+std::vector<Index> WithoutDuplicateGhosts(vtkPointSet* input, const std::vector<Index>& ids);
+} // namespace asmvtk
+
+#endif

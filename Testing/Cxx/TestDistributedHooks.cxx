@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The hooks of asmcore::SimplifyParameters used by distributed runs (Grid,
+// CellBudget, CloudCentroid): a cloud cut into "processes" by grid cell, each
+// part simplified with the global grid and budgets, gives exactly the serial
+// samples (positions and the members that place them, CoreSize); halo cells
+// (budget -1) add nothing, and every point joins exactly one sample.
+#include "Core/Budget.h"
+#include "Core/CellFrame.h"
+#include "Core/Grid.h"
+#include "Core/Simplify.h"
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+
+namespace
+{
+using asmcore::Index;
+
+std::vector<std::array<double, 4>> Sorted(const asmcore::SimplifyResult& r)
+{
+  std::vector<std::array<double, 4>> s;
+  for (const auto& sample : r.Samples)
+  {
+    s.push_back({ sample.Position[0], sample.Position[1], sample.Position[2],
+      static_cast<double>(sample.CoreSize) });
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+void CheckSplit(asmcore::WeightMode weight)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(6000, 2.0, 11);
+  const std::vector<Index> ids = asmtest::AllIds(cloud);
+  asmcore::SimplifyParameters p;
+  p.NumberOfSamples = 701;
+  p.Weight = weight;
+  p.Mode = asmcore::SimplifyMode::Paper; // the hooks serve the paper mode (distributed runs)
+  const asmcore::SimplifyResult serial = asmcore::Simplify(cloud.data(), ids, nullptr, p);
+  ASSERT_EQ(serial.Samples.size(), 701u);
+
+  // The serial grid and budgets, computed as a distributed run does: cells
+  // in key order, CellShares, ApportionBudget.
+  const asmcore::Bounds bounds = asmcore::ComputeBounds(cloud.data(), ids);
+  const asmcore::GridSpec spec = asmcore::GridSpec::Make(bounds, serial.CellSize);
+  const asmcore::CellGrid grid = asmcore::BuildCellGrid(cloud.data(), ids, spec);
+  std::vector<Index> capacity;
+  std::vector<double> variation;
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    capacity.push_back(grid.CellSizeOf(c));
+    variation.push_back(
+      asmcore::ComputeCellFrame(cloud.data(), grid.CellPoints(c), grid.CellSizeOf(c)).SurfaceVariation());
+  }
+  const std::vector<Index> budget =
+    asmcore::ApportionBudget(asmcore::CellShares(capacity, variation, p), capacity, 701);
+  std::map<std::uint64_t, Index> budgetOf;
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    budgetOf[grid.CellKey[c]] = budget[c];
+  }
+  double centroid[3] = { 0, 0, 0 };
+  for (Index id : ids)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      centroid[a] += cloud[3 * id + a] / static_cast<double>(ids.size());
+    }
+  }
+
+  // Three "processes": cells by x index modulo 3; each also gets the cells
+  // of the next index as a halo (budget -1 there: halo).
+  std::vector<std::array<double, 4>> merged;
+  Index members = 0;
+  for (int part = 0; part < 3; ++part)
+  {
+    std::vector<Index> mine;
+    for (Index id : ids)
+    {
+      std::int64_t ijk[3];
+      spec.Unpack(spec.KeyOf(&cloud[3 * id]), ijk);
+      if (ijk[0] % 3 == part || (ijk[0] + 1) % 3 == part)
+      {
+        mine.push_back(id);
+      }
+    }
+    asmcore::SimplifyParameters q = p;
+    q.Grid = &spec;
+    q.CloudCentroid = centroid;
+    q.CellBudget = [&](std::uint64_t key) {
+      std::int64_t ijk[3];
+      spec.Unpack(key, ijk);
+      return ijk[0] % 3 == part ? budgetOf.at(key) : Index(-1);
+    };
+    const asmcore::SimplifyResult result = asmcore::Simplify(cloud.data(), mine, nullptr, q);
+    for (const auto& sample : result.Samples)
+    {
+      members += sample.ClusterSize;
+    }
+    const auto partial = Sorted(result);
+    merged.insert(merged.end(), partial.begin(), partial.end());
+  }
+  std::sort(merged.begin(), merged.end());
+  EXPECT_EQ(members, static_cast<Index>(ids.size())) << "every point in exactly one cluster";
+  const auto expected = Sorted(serial);
+  ASSERT_EQ(merged.size(), expected.size());
+  for (std::size_t i = 0; i < merged.size(); ++i)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      EXPECT_NEAR(merged[i][c], expected[i][c], 1e-12) << "sample " << i;
+    }
+  }
+}
+} // namespace
+
+TEST(DistributedHooks, CellSplitGivesTheSerialSamplesUniform)
+{
+  CheckSplit(asmcore::WeightMode::Uniform);
+}
+
+TEST(DistributedHooks, CellSplitGivesTheSerialSamplesSurfaceVariation)
+{
+  CheckSplit(asmcore::WeightMode::SurfaceVariation);
+}

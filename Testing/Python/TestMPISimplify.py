@@ -1,0 +1,89 @@
+"""MPI test, run under `mpiexec -n K pvbatch --mpi --symmetric` (every
+process runs this script): the bunny split over the K processes in an
+interleaved way (every grid cell is split; each process holds its points in
+reverse order), simplified to exactly N_s = 1800 points with the wrapped
+vtkASMSimplify (AlwaysDistribute on, so K = 1 takes the same path), then
+measured by vtkKeyPointError. Process 0 gathers the output and writes
+sorted coordinates, arrays and figures to the .npz file given as argument;
+CheckMPIOutputs.py compares the files of K = 1, 2, 3.
+
+Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
+"""
+import os
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+
+from asmvtk import vtkASMSimplify, vtkKeyPointError
+
+NS = 1800
+controller = vtkMultiProcessController.GetGlobalController()
+rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
+
+reader = vtkPLYReader()
+reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
+reader.Update()
+xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+# Interleaved split by a hash of the point index, reversed order.
+index = np.arange(len(xyz), dtype=np.uint64)
+owner = ((index * np.uint64(2654435761)) % np.uint64(2 ** 32)) % np.uint64(size)
+mine = np.nonzero(owner == rank)[0][::-1]
+points = vtkPoints()
+points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
+piece = vtkPolyData()
+piece.SetPoints(points)
+# A point array that must be averaged over the same clusters whatever K.
+value = numpy_to_vtk(np.ascontiguousarray(xyz[mine, 0] * 10.0 + xyz[mine, 1]), deep=1)
+value.SetName("Value")
+piece.GetPointData().AddArray(value)
+
+asm = vtkASMSimplify()
+asm.SetInputData(piece)
+asm.SetTargetModeToNumberOfOutputPoints()
+asm.SetNumberOfOutputPoints(NS)
+asm.AlwaysDistributeOn()
+asm.SetMode(vtkASMSimplify.PAPER)  # distributed runs use the paper mode for now
+asm.Update()
+out = asm.GetOutput()
+
+kpe = vtkKeyPointError()
+kpe.SetInputData(0, piece)
+kpe.SetInputConnection(1, asm.GetOutputPort())
+kpe.Update()
+measured = kpe.GetOutput()
+
+# Gather every process's output on process 0.
+def gather(name_arrays):
+    local = np.column_stack(name_arrays) if len(name_arrays[0]) else np.zeros((0, len(name_arrays)))
+    send = numpy_to_vtk(np.ascontiguousarray(local.ravel(), dtype=np.float64), deep=1)
+    received = vtkDoubleArray()
+    controller.AllGatherV(send, received)
+    allv = vtk_to_numpy(received)
+    return allv.reshape(-1, len(name_arrays))
+
+
+n = out.GetNumberOfPoints()
+pd = out.GetPointData()
+mpd = measured.GetPointData()
+columns = [vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64).reshape(n, 3)[:, c] for c in range(3)]
+for name in ("Value", "MeanCurvature", "KeyPoint", "ClusterSize"):
+    columns.append(vtk_to_numpy(pd.GetArray(name)).astype(np.float64) if n else np.zeros(0))
+columns.append(vtk_to_numpy(mpd.GetArray("Error")).astype(np.float64) if n else np.zeros(0))
+table = gather(columns)
+fd = out.GetFieldData()
+mfd = measured.GetFieldData()
+figures = {name: fd.GetArray(name).GetValue(0) for name in ("AKPE", "MKPE", "NumberOfKeyPoints", "CellSize")}
+for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplified",
+             "MeanDistanceSimplifiedToOriginal", "PointToPlaneMean", "NumberOfOriginalKeyPoints",
+             "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
+    figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
+if rank == 0:
+    order = np.lexsort(table[:, 2::-1].T)
+    np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()))
+    print("K = %d: %d output points, figures %s" % (size, len(table), figures))
