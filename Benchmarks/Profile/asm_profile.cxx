@@ -7,8 +7,10 @@
  *
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages]
- *               [--dump file] [--coherent]
+ *               [--dump file] [--coherent] [--mode paper|feature]
  *
+ * --mode picks vtkASMSimplify's Mode (default: the filter's default,
+ * FEATURE_PRESERVING).
  * --coherent sorts the synthetic points along a Morton curve (scan-like
  * memory order; default: random order, the worst case for gathers).
  * --stages also times the core's stages one by one (same calls as
@@ -275,6 +277,7 @@ int main(int argc, char* argv[])
   bool curvature = false, stages = false, coherent = false;
   const char* ply = nullptr;
   const char* dump = nullptr;
+  int mode = -1;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -291,6 +294,8 @@ int main(int argc, char* argv[])
       ply = next, ++i;
     else if (a == "--dump")
       dump = next, ++i;
+    else if (a == "--mode")
+      mode = std::string(next) == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING, ++i;
     else if (a == "--curvature")
       curvature = true;
     else if (a == "--coherent")
@@ -337,6 +342,8 @@ int main(int argc, char* argv[])
         filter->SetInputData(input);
         filter->SetOutputFraction(fraction);
         filter->SetGenerateCurvature(curvature);
+        if (mode >= 0)
+          filter->SetMode(mode);
         malloc_trim(0);
         ResetPeak();
         const long base = StatusKB("VmRSS:");
@@ -358,7 +365,7 @@ int main(int argc, char* argv[])
           {
             double p[3];
             out->GetPoint(i, p);
-            std::fprintf(f, "%.9g %.9g %.9g %lld %d", p[0], p[1], p[2],
+            std::fprintf(f, "%.17g %.17g %.17g %lld %d", p[0], p[1], p[2],
               (long long)oid->GetTuple1(i), int(key->GetTuple1(i)));
             if (mc)
               std::fprintf(f, " %.12g", mc->GetTuple1(i));

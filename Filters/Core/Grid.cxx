@@ -283,22 +283,27 @@ namespace
 double EffectiveOccupiedCells(
   const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, double minPoints)
 {
-  std::vector<std::uint64_t> keys(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i)
+  // Points per cell in a hash table, then the cells in increasing key order
+  // (the order of the sum): no sort of one key per point.
+  KeyTable table;
+  std::uint64_t last = KeyTable::Empty;
+  Index* run = nullptr;
+  for (Index id : ids)
   {
-    keys[i] = spec.KeyOf(xyz + 3 * ids[i]);
-  }
-  std::sort(keys.begin(), keys.end());
-  double count = 0.0;
-  for (std::size_t i = 0; i < keys.size();)
-  {
-    std::size_t j = i + 1;
-    while (j < keys.size() && keys[j] == keys[i])
+    const std::uint64_t key = spec.KeyOf(xyz + 3 * id);
+    if (key != last)
     {
-      ++j;
+      table.Insert(key);
+      run = &table.ValueOf(key);
+      last = key;
     }
-    count += std::min(1.0, static_cast<double>(j - i) / minPoints);
-    i = j;
+    ++*run;
+  }
+  const std::vector<std::uint64_t> keys = table.SortedKeys();
+  double count = 0.0;
+  for (std::uint64_t key : keys)
+  {
+    count += std::min(1.0, static_cast<double>(table.Find(key)) / minPoints);
   }
   return count;
 }

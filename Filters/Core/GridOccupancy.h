@@ -237,13 +237,16 @@ private:
   void Grow()
   {
     std::vector<std::uint64_t> old;
+    std::vector<Index> oldValues;
     old.swap(this->Keys);
+    oldValues.swap(this->Values);
     this->Resize(this->Bits + 1);
-    for (std::uint64_t k : old)
+    for (std::size_t i = 0; i < old.size(); ++i)
     {
-      if (k != Empty)
+      if (old[i] != Empty)
       {
-        this->Insert(k);
+        this->Insert(old[i]);
+        this->ValueOf(old[i]) = oldValues[i]; // values survive growth
       }
     }
   }

@@ -260,49 +260,80 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
   const std::vector<Index>& assign, SampleSet& samples, const Execution& execution)
 {
   std::vector<double> next(samples.Position);
+  // The points assigned to a cell's samples lie in its ring (the assignment
+  // searches rings, which are symmetric). A chunk of cells scans the union
+  // of its cells' rings once, in increasing cell order, which is each ring's
+  // visiting order: every sample sums its points in the same order as a scan
+  // of its own ring would.
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
-    std::vector<double> sum;
-    std::vector<Index> count;
+    const Index firstSample = samples.Start[b], lastSample = samples.Start[e];
+    if (lastSample == firstSample)
+    {
+      return;
+    }
+    Index lo = std::numeric_limits<Index>::max(), hi = -1;
     for (Index c = b; c < e; ++c)
     {
-      const Index first = samples.Start[c], budget = samples.Start[c + 1] - first;
-      if (budget == 0)
+      if (samples.Start[c + 1] == samples.Start[c])
       {
         continue;
       }
-      sum.assign(static_cast<std::size_t>(3 * budget), 0.0);
-      count.assign(static_cast<std::size_t>(budget), 0);
-      // Points assigned to c's samples lie in c's ring; fixed visiting order.
-      const Index* ring = neighbors.Of(c);
       for (int k = 0; k < 27; ++k)
       {
-        const Index nb = ring[k];
-        if (nb < 0)
+        const Index nb = neighbors.Of(c)[k];
+        if (nb >= 0)
         {
-          continue;
+          lo = std::min(lo, nb);
+          hi = std::max(hi, nb);
         }
-        for (Index i = grid.CellStart[nb]; i < grid.CellStart[nb + 1]; ++i)
+      }
+    }
+    std::vector<char> inRing(static_cast<std::size_t>(hi - lo + 1), 0);
+    for (Index c = b; c < e; ++c)
+    {
+      if (samples.Start[c + 1] == samples.Start[c])
+      {
+        continue;
+      }
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = neighbors.Of(c)[k];
+        if (nb >= 0)
         {
-          const Index s = assign[i] - first;
-          if (s >= 0 && s < budget)
+          inRing[nb - lo] = 1;
+        }
+      }
+    }
+    const Index owned = lastSample - firstSample;
+    std::vector<double> sum(static_cast<std::size_t>(3 * owned), 0.0);
+    std::vector<Index> count(static_cast<std::size_t>(owned), 0);
+    for (Index nb = lo; nb <= hi; ++nb)
+    {
+      if (!inRing[nb - lo])
+      {
+        continue;
+      }
+      for (Index i = grid.CellStart[nb]; i < grid.CellStart[nb + 1]; ++i)
+      {
+        const Index s = assign[i] - firstSample;
+        if (s >= 0 && s < owned)
+        {
+          const double* p = xyz + 3 * grid.Order[i];
+          ++count[s];
+          for (int a = 0; a < 3; ++a)
           {
-            const double* p = xyz + 3 * grid.Order[i];
-            ++count[s];
-            for (int a = 0; a < 3; ++a)
-            {
-              sum[3 * s + a] += p[a];
-            }
+            sum[3 * s + a] += p[a];
           }
         }
       }
-      for (Index s = 0; s < budget; ++s)
+    }
+    for (Index s = 0; s < owned; ++s)
+    {
+      if (!samples.Fixed[firstSample + s] && count[s] > 0)
       {
-        if (!samples.Fixed[first + s] && count[s] > 0)
+        for (int a = 0; a < 3; ++a)
         {
-          for (int a = 0; a < 3; ++a)
-          {
-            next[3 * (first + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
-          }
+          next[3 * (firstSample + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
         }
       }
     }
