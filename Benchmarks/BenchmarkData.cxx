@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BenchmarkData.h"
 
+#include "Core/Common.h" // asmcore::SplitMix64
+
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
@@ -21,21 +23,15 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-/// SplitMix64 with uniform and normal draws.
+/// The core's SplitMix64 generator with uniform and normal draws.
 class Random
 {
 public:
   explicit Random(std::uint64_t seed)
-    : State(seed)
+    : Generator(seed)
   {
   }
-  std::uint64_t Next()
-  {
-    std::uint64_t z = (this->State += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
+  std::uint64_t Next() { return this->Generator.Next(); }
   /// Uniform in [0, 1).
   double Uniform() { return static_cast<double>(this->Next() >> 11) * 0x1.0p-53; }
   /// Standard normal (Box-Muller).
@@ -54,7 +50,7 @@ public:
   }
 
 private:
-  std::uint64_t State;
+  asmcore::SplitMix64 Generator;
 };
 
 using Vec = std::array<double, 3>;

@@ -6,7 +6,9 @@
 Reads a PLY file (default: Testing/Data/bunny.ply), simplifies it to 5 % of its
 points with the ASM Simplify filter, writes the result as PLY (default:
 asm-output.ply in the current directory) and prints N, N_s, the filter's
-run time and the maximum key point error MKPE (output field data).
+run time, the number of key points and the maximum key point error MKPE
+(output field data; 0 in the default mode, whose key points are the extreme
+input points themselves).
 
 The plugin is looked up in this order: --plugin, $ASM_PLUGIN, then the build
 tree (build/lib/paraview-*/plugins/ASM/ASM.so next to this repository).
@@ -51,6 +53,8 @@ def main():
                         help="output PLY file (default: asm-output.ply)")
     parser.add_argument("--fraction", type=float, default=0.05,
                         help="fraction of the input points to keep (default: 0.05)")
+    parser.add_argument("--mode", choices=["Feature Preserving", "Paper"], default="Feature Preserving",
+                        help="vtkASMSimplify Mode (default: Feature Preserving)")
     parser.add_argument("--plugin", help="path of the ASM plugin library (ASM.so)")
     args = parser.parse_args()
 
@@ -60,7 +64,7 @@ def main():
     reader.UpdatePipeline()
     n_in = reader.GetDataInformation().GetNumberOfPoints()
 
-    asm = ASMSimplify(Input=reader, OutputFraction=args.fraction)  # noqa: F821 (from the plugin)
+    asm = ASMSimplify(Input=reader, OutputFraction=args.fraction, Mode=args.mode)  # noqa: F821 (from the plugin)
     start = time.perf_counter()
     asm.UpdatePipeline()
     seconds = time.perf_counter() - start
@@ -68,12 +72,16 @@ def main():
     output = servermanager.Fetch(asm)
     mkpe_array = output.GetFieldData().GetArray("MKPE")
     mkpe = mkpe_array.GetValue(0) if mkpe_array is not None else float("nan")
+    keys_array = output.GetFieldData().GetArray("NumberOfKeyPoints")
+    keys = int(keys_array.GetValue(0)) if keys_array is not None else -1
 
     write_ply(output, os.path.abspath(args.output))
 
     print("input     : %s" % args.input)
     print("N         : %d" % n_in)
+    print("mode      : %s" % args.mode)
     print("N_s       : %d" % output.GetNumberOfPoints())
+    print("key points: %d" % keys)
     print("time (s)  : %.3f" % seconds)
     print("MKPE      : %.6g" % mkpe)
     print("output    : %s" % args.output)

@@ -362,17 +362,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       out.KeyError = info[s].KeyError;
     }
   });
-  double sum = 0.0;
-  for (const Sample& s : result.Samples)
-  {
-    if (s.Key)
-    {
-      ++result.NumberOfKeyPoints;
-      sum += s.KeyError;
-      result.MKPE = std::max(result.MKPE, s.KeyError);
-    }
-  }
-  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+  SummarizeKeyPoints(result);
   execution.Report(1.0);
   return result;
 }

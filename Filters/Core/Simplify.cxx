@@ -235,6 +235,24 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   return CellShares(capacity, variation, parameters, exponent);
 }
 
+void SummarizeKeyPoints(SimplifyResult& result)
+{
+  // Summed in sample order: deterministic.
+  result.NumberOfKeyPoints = 0;
+  result.MKPE = 0.0;
+  double sum = 0.0;
+  for (const Sample& s : result.Samples)
+  {
+    if (s.Key)
+    {
+      ++result.NumberOfKeyPoints;
+      sum += s.KeyError;
+      result.MKPE = std::max(result.MKPE, s.KeyError);
+    }
+  }
+  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+}
+
 SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
@@ -477,18 +495,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
 
   AttachUnclaimedPoints(xyz, ids, result, haloSlot, execution);
 
-  // Key point error of the run, summed in sample order (deterministic).
-  double sum = 0.0;
-  for (const Sample& s : result.Samples)
-  {
-    if (s.Key)
-    {
-      ++result.NumberOfKeyPoints;
-      sum += s.KeyError;
-      result.MKPE = std::max(result.MKPE, s.KeyError);
-    }
-  }
-  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+  SummarizeKeyPoints(result);
   return result;
 }
 } // namespace asmcore

@@ -122,6 +122,9 @@ VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>
   const CellGrid& grid, const SimplifyParameters& parameters, double exponent,
   std::vector<Index>& capacity);
 
+/// Fills NumberOfKeyPoints, AKPE and MKPE of `result` from its key samples.
+VTKASMFILTERS_EXPORT void SummarizeKeyPoints(SimplifyResult& result);
+
 /// Simplify the points xyz[3*id], id in `ids` (finite points), to exactly
 /// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be null)
 /// orients the output normals; without it they point away from the cloud's
