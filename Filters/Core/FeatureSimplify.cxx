@@ -8,6 +8,7 @@
 #include "Grid.h"
 #include "HoleFilling.h"
 #include "Lloyd.h"
+#include "Neighbors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +78,31 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
       ++count[s];
     }
   }
+}
+
+// Points that no sample within the searched cell rings took (sparse clouds
+// with fewer samples than cells) join the nearest sample anywhere, so that
+// the clusters stay a partition of the points.
+void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count,
+  std::vector<Index>& assign, const Execution& execution)
+{
+  if (count == 0 || std::find(assign.begin(), assign.end(), Index(-1)) == assign.end())
+  {
+    return;
+  }
+  std::vector<Index> sampleIds(static_cast<std::size_t>(count));
+  std::iota(sampleIds.begin(), sampleIds.end(), Index(0));
+  const Neighbors tree(samples.Position.data(), sampleIds);
+  execution.Run(0, static_cast<Index>(assign.size()), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      if (assign[i] < 0)
+      {
+        const NearestPoint nearest = tree.Nearest(P + 3 * i);
+        assign[i] = nearest.Id >= 0 ? nearest.Id : 0;
+      }
+    }
+  });
 }
 } // namespace
 
@@ -261,6 +287,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
 
   // Clusters: every point joins its nearest sample.
   AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+  JoinUnassignedPoints(P, samples, count, assign, execution);
   std::vector<Index> clusterSize(static_cast<std::size_t>(count), 0);
   for (Index s : assign)
   {
