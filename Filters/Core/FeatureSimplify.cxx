@@ -133,17 +133,15 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
 
   // 1. Grid.
   const Bounds bounds = ComputeBounds(xyz, ids, execution);
-  double cellSize = parameters.CellSize;
-  if (!(cellSize > 0.0) || !std::isfinite(cellSize))
-  {
-    const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-    cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
-  }
+  const double cellSize = parameters.CellSize;
+  const CellGrid original = (cellSize > 0.0 && std::isfinite(cellSize))
+    ? BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution)
+    : BuildAutomaticCellGrid(xyz, ids, bounds,
+        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell), execution);
   if (abort(0.1))
   {
     return result;
   }
-  const CellGrid original = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
   // Every later pass reads the points cell by cell: a copy in cell order
   // (slot i holds point original.Order[i]) keeps those reads sequential.
   std::vector<double> cellOrdered(static_cast<std::size_t>(3 * total));

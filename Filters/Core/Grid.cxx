@@ -119,71 +119,55 @@ void GridSpec::Unpack(std::uint64_t key, std::int64_t ijk[3]) const
   ijk[2] = static_cast<std::int64_t>((key >> 42) & mask);
 }
 
-CellGrid BuildCellGrid(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+namespace
 {
-  CellGrid grid;
-  grid.Spec = spec;
-  const Index n = static_cast<Index>(ids.size());
-  grid.CellStart.assign(1, 0);
-  if (n == 0)
-  {
-    return grid;
-  }
-  // 1. The cell of every point, as a dense cell number in key order.
-  std::vector<std::uint64_t> cell(static_cast<std::size_t>(n));
-  OccupancyBitmap bitmap;
-  if (bitmap.Init(spec, n))
-  {
-    MarkCells(xyz, ids, spec, bitmap, cell.data(), execution);
-    std::vector<Index> rank(static_cast<std::size_t>(bitmap.Words) + 1, 0);
-    for (Index w = 0; w < bitmap.Words; ++w)
-    {
-      rank[w + 1] = rank[w] + PopCount(bitmap.Word(w));
-    }
-    grid.CellKey.resize(static_cast<std::size_t>(rank[bitmap.Words]));
-    execution.Run(0, bitmap.Words, [&](Index b, Index e) {
-      for (Index w = b; w < e; ++w)
-      {
-        Index c = rank[w];
-        for (std::uint64_t bits = bitmap.Word(w); bits; bits &= bits - 1)
-        {
-          grid.CellKey[c++] = bitmap.KeyOfLinear(64 * static_cast<std::uint64_t>(w) + TrailingZeros(bits));
-        }
-      }
-    });
-    execution.Run(0, n, [&](Index b, Index e) {
-      for (Index i = b; i < e; ++i)
-      {
-        const std::uint64_t lin = cell[i];
-        const std::uint64_t below = (std::uint64_t(1) << (lin & 63)) - 1;
-        cell[i] = static_cast<std::uint64_t>(rank[lin >> 6]) + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below);
-      }
-    });
-  }
-  else
-  {
-    KeyTable table;
-    InsertKeys(xyz, ids, spec, table);
-    grid.CellKey = table.SortedKeys();
-    for (std::size_t c = 0; c < grid.CellKey.size(); ++c)
-    {
-      table.ValueOf(grid.CellKey[c]) = static_cast<Index>(c);
-    }
-    execution.Run(0, n, [&](Index b, Index e) {
-      const FastCellOf cellOf(spec);
-      for (Index i = b; i < e; ++i)
-      {
-        std::uint64_t ijk[3];
-        cellOf(xyz + 3 * ids[i], ijk);
-        cell[i] = static_cast<std::uint64_t>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
-      }
-    });
-  }
-  const Index cells = static_cast<Index>(grid.CellKey.size());
+// The first half of BuildCellGrid on a bitmap: the occupied cells and each
+// point's linear cell number. A search for the cell size keeps the marks of
+// its last count, and the grid is finished from them when that count is the
+// answer.
+struct CellMarks
+{
+  GridSpec Spec;
+  OccupancyBitmap Bitmap;
+  std::vector<std::uint64_t> Cell; // per point: linear cell number
+  bool Valid = false;
 
-  // 2. Counting sort by cell, stable: in each cell, points keep the order of
-  // `ids`. Blocks count their points per cell, then scatter them.
+  // False (and nothing marked) when the grid is too large for a bitmap.
+  bool Mark(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec,
+    const Execution& execution)
+  {
+    this->Valid = false;
+    const Index n = static_cast<Index>(ids.size());
+    if (n == 0 || !this->Bitmap.Init(spec, n))
+    {
+      return false;
+    }
+    this->Spec = spec;
+    this->Cell.resize(static_cast<std::size_t>(n));
+    MarkCells(xyz, ids, spec, this->Bitmap, this->Cell.data(), execution);
+    this->Valid = true;
+    return true;
+  }
+  Index Occupied() const
+  {
+    Index count = 0;
+    for (Index w = 0; w < this->Bitmap.Words; ++w)
+    {
+      count += PopCount(this->Bitmap.Word(w));
+    }
+    return count;
+  }
+};
+
+// Counting sort of the points by dense cell number `cell[i]` (of ids[i]),
+// stable: in each cell, points keep the order of `ids`, then ties by id.
+// Fills grid.CellStart and grid.Order; grid.CellKey is set.
+void SortIntoCells(const std::vector<Index>& ids, const std::vector<std::uint64_t>& cell,
+  CellGrid& grid, const Execution& execution)
+{
+  const Index n = static_cast<Index>(ids.size());
+  const Index cells = static_cast<Index>(grid.CellKey.size());
+  // Blocks count their points per cell, then scatter them.
   Index blocks = BlockCount(n, 8, 1 << 16);
   while (blocks > 1 && blocks * cells > n / 2)
   {
@@ -227,7 +211,7 @@ CellGrid BuildCellGrid(
     }
   });
 
-  // 3. Ties by id: already so when `ids` ascends (FinitePointIds), else sort
+  // Ties by id: already so when `ids` ascends (FinitePointIds), else sort
   // each cell.
   std::atomic<bool> ascending{ true };
   execution.Run(1, n, [&](Index b, Index e) {
@@ -249,6 +233,83 @@ CellGrid BuildCellGrid(
       }
     });
   }
+}
+
+// The grid from valid marks (which it consumes).
+CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const Execution& execution)
+{
+  CellGrid grid;
+  grid.Spec = marks.Spec;
+  const OccupancyBitmap& bitmap = marks.Bitmap;
+  std::vector<std::uint64_t>& cell = marks.Cell;
+  // The cells in key order, and each point's dense cell number.
+  std::vector<Index> rank(static_cast<std::size_t>(bitmap.Words) + 1, 0);
+  for (Index w = 0; w < bitmap.Words; ++w)
+  {
+    rank[w + 1] = rank[w] + PopCount(bitmap.Word(w));
+  }
+  grid.CellKey.resize(static_cast<std::size_t>(rank[bitmap.Words]));
+  execution.Run(0, bitmap.Words, [&](Index b, Index e) {
+    for (Index w = b; w < e; ++w)
+    {
+      Index c = rank[w];
+      for (std::uint64_t bits = bitmap.Word(w); bits; bits &= bits - 1)
+      {
+        grid.CellKey[c++] = bitmap.KeyOfLinear(64 * static_cast<std::uint64_t>(w) + TrailingZeros(bits));
+      }
+    }
+  });
+  execution.Run(0, static_cast<Index>(cell.size()), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      const std::uint64_t lin = cell[i];
+      const std::uint64_t below = (std::uint64_t(1) << (lin & 63)) - 1;
+      cell[i] = static_cast<std::uint64_t>(rank[lin >> 6]) + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below);
+    }
+  });
+  SortIntoCells(ids, cell, grid, execution);
+  marks.Valid = false;
+  return grid;
+}
+} // namespace
+
+CellGrid BuildCellGrid(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+{
+  const Index n = static_cast<Index>(ids.size());
+  if (n == 0)
+  {
+    CellGrid grid;
+    grid.Spec = spec;
+    grid.CellStart.assign(1, 0);
+    return grid;
+  }
+  CellMarks marks;
+  if (marks.Mark(xyz, ids, spec, execution))
+  {
+    return FinishCellGrid(ids, marks, execution);
+  }
+  // Grids too large for a bitmap: the occupied cells in a hash table.
+  CellGrid grid;
+  grid.Spec = spec;
+  std::vector<std::uint64_t> cell(static_cast<std::size_t>(n));
+  KeyTable table;
+  InsertKeys(xyz, ids, spec, table);
+  grid.CellKey = table.SortedKeys();
+  for (std::size_t c = 0; c < grid.CellKey.size(); ++c)
+  {
+    table.ValueOf(grid.CellKey[c]) = static_cast<Index>(c);
+  }
+  execution.Run(0, n, [&](Index b, Index e) {
+    const FastCellOf cellOf(spec);
+    for (Index i = b; i < e; ++i)
+    {
+      std::uint64_t ijk[3];
+      cellOf(xyz + 3 * ids[i], ijk);
+      cell[i] = static_cast<std::uint64_t>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
+    }
+  });
+  SortIntoCells(ids, cell, grid, execution);
   return grid;
 }
 
@@ -311,13 +372,14 @@ double EffectiveOccupiedCells(
 // The cell edge for which count(spec) is about targetCells (> 1), for a
 // cloud of largest extent > 0.
 template <typename Count>
-double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count)
+double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count, double start = 0.0)
 {
   const double maxExtent = bounds.MaxExtent();
   const double oneCell = maxExtent * (1.0 + 1e-9);
   // Start from the guess that the points sample a surface (count ~ h^-2),
-  // then correct with the measured count and the measured local exponent.
-  double h = maxExtent / std::sqrt(targetCells);
+  // unless a start is given, then correct with the measured count and the
+  // measured local exponent.
+  double h = start > 0.0 ? std::min(start, oneCell) : maxExtent / std::sqrt(targetCells);
   double bestH = oneCell;
   double bestErr = std::abs(std::log(1.0 / targetCells));
   double prevH = 0.0, prevCount = 0.0;
@@ -365,6 +427,59 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   return SearchCellSize(bounds, targetCells, countOccupied);
 }
 
+namespace
+{
+// A start for the full search: the search run on every k-th point (k >= 4,
+// and about 32 of them left per target cell when the cloud is dense enough;
+// the occupancy of a sparser subsample is lower by some percent, and the
+// full search corrects that in a pass or two). Returns 0 (no start) for
+// clouds small enough to search on all points.
+double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
+  double targetCells, const Execution& execution)
+{
+  const auto n = static_cast<double>(ids.size());
+  const auto stride = std::max<Index>(4, static_cast<Index>(std::floor(n / targetCells / 32.0)));
+  if (n < 200000.0)
+  {
+    return 0.0;
+  }
+  std::vector<Index> subset;
+  subset.reserve(ids.size() / static_cast<std::size_t>(stride) + 1);
+  for (std::size_t i = 0; i < ids.size(); i += static_cast<std::size_t>(stride))
+  {
+    subset.push_back(ids[i]);
+  }
+  return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
+    return static_cast<double>(CountOccupiedCells(xyz, subset, spec, execution));
+  });
+}
+
+// The points per cell below which a cell counts by its share in the
+// outlier-robust occupancy: less than one sample's worth at 8 samples per
+// target cell.
+double SparseCellPoints(Index points, double targetCells)
+{
+  return std::max(1.0, static_cast<double>(points) / targetCells / 8.0);
+}
+
+// Far outliers and stray points each occupy a cell of their own: when such
+// sparse cells make up a fifth of the count, they would drive the cell size
+// of the whole cloud.
+bool SparseCellsDominate(double effective, double raw)
+{
+  return !(effective >= 0.8 * raw);
+}
+
+// The outlier-robust search: each cell counted by min(1, points / minimum).
+double SearchIgnoringSparseCells(const double* xyz, const std::vector<Index>& ids,
+  const Bounds& bounds, double targetCells)
+{
+  const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
+  return SearchCellSize(bounds, targetCells,
+    [&](const GridSpec& spec) { return EffectiveOccupiedCells(xyz, ids, spec, minPoints); });
+}
+} // namespace
+
 double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
@@ -378,22 +493,60 @@ double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const
   {
     return maxExtent * (1.0 + 1e-9);
   }
+  const double start = SubsampleStart(xyz, ids, bounds, targetCells, execution);
+  double lastH = -1.0, lastCount = 0.0;
   const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
-    return static_cast<double>(CountOccupiedCells(xyz, ids, spec, execution));
-  });
-  // Far outliers and stray points each occupy a cell of their own: when such
-  // sparse cells (fewer than 1/8 of the mean points per target cell, i.e.
-  // less than one sample's worth at 8 samples per cell) make up a fifth of
-  // the count, they would drive the cell size of the whole cloud. Search
-  // again, counting each cell by min(1, points / that minimum).
-  const double minPoints = std::max(1.0, static_cast<double>(ids.size()) / targetCells / 8.0);
+    lastH = spec.CellSize;
+    lastCount = static_cast<double>(CountOccupiedCells(xyz, ids, spec, execution));
+    return lastCount;
+  }, start);
   const GridSpec found = GridSpec::Make(bounds, h);
-  const double raw = static_cast<double>(CountOccupiedCells(xyz, ids, found, execution));
-  if (EffectiveOccupiedCells(xyz, ids, found, minPoints) >= 0.8 * raw)
+  const double raw = found.CellSize == lastH
+    ? lastCount
+    : static_cast<double>(CountOccupiedCells(xyz, ids, found, execution));
+  const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
+  if (!SparseCellsDominate(EffectiveOccupiedCells(xyz, ids, found, minPoints), raw))
   {
     return h;
   }
-  return SearchCellSize(bounds, targetCells,
-    [&](const GridSpec& spec) { return EffectiveOccupiedCells(xyz, ids, spec, minPoints); });
+  return SearchIgnoringSparseCells(xyz, ids, bounds, targetCells);
+}
+
+CellGrid BuildAutomaticCellGrid(const double* xyz, const std::vector<Index>& ids,
+  const Bounds& bounds, double targetCells, const Execution& execution)
+{
+  const double maxExtent = bounds.MaxExtent();
+  if (ids.empty() || !(maxExtent > 0.0) || targetCells <= 1.0)
+  {
+    return BuildCellGrid(
+      xyz, ids, GridSpec::Make(bounds, AutomaticCellSize(xyz, ids, bounds, targetCells)), execution);
+  }
+  // The full search's counts keep their marks: the last count is usually
+  // the answer, and the grid is then finished from its marks.
+  const double start = SubsampleStart(xyz, ids, bounds, targetCells, execution);
+  CellMarks marks;
+  const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
+    return static_cast<double>(marks.Mark(xyz, ids, spec, execution)
+        ? marks.Occupied()
+        : CountOccupiedCells(xyz, ids, spec, execution));
+  }, start);
+  const GridSpec found = GridSpec::Make(bounds, h);
+  CellGrid grid = (marks.Valid && marks.Spec.CellSize == found.CellSize)
+    ? FinishCellGrid(ids, marks, execution)
+    : BuildCellGrid(xyz, ids, found, execution);
+  // The outlier-robust count, from the grid's cells in key order (the sum
+  // of EffectiveOccupiedCells, in the same order).
+  const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
+  double effective = 0.0;
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    effective += std::min(1.0, static_cast<double>(grid.CellSizeOf(c)) / minPoints);
+  }
+  if (!SparseCellsDominate(effective, static_cast<double>(grid.NumberOfCells())))
+  {
+    return grid;
+  }
+  return BuildCellGrid(xyz, ids,
+    GridSpec::Make(bounds, SearchIgnoringSparseCells(xyz, ids, bounds, targetCells)), execution);
 }
 } // namespace asmcore

@@ -94,9 +94,19 @@ VTKASMFILTERS_EXPORT Index CountOccupiedCells(const double* xyz, const std::vect
   const GridSpec& spec, const Execution& execution = {});
 
 /// The cell edge for which about `targetCells` cells are non-empty. Searches
-/// in log(cell size) with the measured occupancy, a few passes over the data.
+/// in log(cell size) with the measured occupancy: first on a subsample (every
+/// k-th point, about 32 per target cell), then from there on all points,
+/// usually one pass. When sparse cells (far outliers) make up a fifth of the
+/// count, searches again counting each cell by its share of a sample.
 VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids,
   const Bounds& bounds, double targetCells, const Execution& execution = {});
+
+/// BuildCellGrid with the cell size of AutomaticCellSize, searched and built
+/// in one go (the grid of the search's last count is reused when it is the
+/// answer).
+VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(const double* xyz,
+  const std::vector<Index>& ids, const Bounds& bounds, double targetCells,
+  const Execution& execution = {});
 
 /// The same search with the occupancy counted by `countOccupied` (e.g. the
 /// distinct non-empty cells over all processes of a distributed run).

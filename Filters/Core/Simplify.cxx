@@ -271,29 +271,31 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 1. Hash the points into the grid.
-  GridSpec spec;
+  CellGrid grid;
   if (parameters.Grid)
   {
-    spec = *parameters.Grid;
+    grid = BuildCellGrid(xyz, ids, *parameters.Grid, execution);
   }
   else
   {
     const Bounds bounds = ComputeBounds(xyz, ids, execution);
-    double cellSize = parameters.CellSize;
+    const double cellSize = parameters.CellSize;
     if (!(cellSize > 0.0) || !std::isfinite(cellSize))
     {
       const double targetCells =
         static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-      cellSize = AutomaticCellSize(xyz, ids, bounds, targetCells, execution);
+      grid = BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution);
     }
-    spec = GridSpec::Make(bounds, cellSize);
+    else
+    {
+      grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
+    }
   }
   if (execution.Report(0.1))
   {
     result.Aborted = true;
     return result;
   }
-  const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
   result.CellSize = grid.Spec.CellSize;
   result.NumberOfCells = cells;
