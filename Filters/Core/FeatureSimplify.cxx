@@ -317,12 +317,8 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
 
   // Output samples.
-  Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
-  for (Index id : ids)
-  {
-    cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
-  }
-  cloudCentroid /= static_cast<double>(total);
+  Eigen::Vector3d cloudCentroid;
+  ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
   result.Samples.resize(static_cast<std::size_t>(count));
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)

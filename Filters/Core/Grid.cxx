@@ -89,6 +89,45 @@ Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids, const Exe
   return b;
 }
 
+void ComputeCentroid(
+  const double* xyz, const std::vector<Index>& ids, double centroid[3], const Execution& execution)
+{
+  centroid[0] = centroid[1] = centroid[2] = 0.0;
+  const Index n = static_cast<Index>(ids.size());
+  if (n == 0)
+  {
+    return;
+  }
+  const Index blocks = BlockCount(n, 64, 1 << 15);
+  std::vector<double> partial(static_cast<std::size_t>(3 * blocks), 0.0);
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index k = first; k < last; ++k)
+    {
+      double sum[3] = { 0.0, 0.0, 0.0 };
+      const Index end = BlockBegin(n, blocks, k + 1);
+      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
+      {
+        const double* p = xyz + 3 * ids[i];
+        sum[0] += p[0];
+        sum[1] += p[1];
+        sum[2] += p[2];
+      }
+      std::copy(sum, sum + 3, &partial[3 * k]);
+    }
+  });
+  for (Index k = 0; k < blocks; ++k)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      centroid[a] += partial[3 * k + a];
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    centroid[a] /= static_cast<double>(n);
+  }
+}
+
 GridSpec GridSpec::Make(const Bounds& bounds, double cellSize)
 {
   GridSpec g;

@@ -36,6 +36,11 @@ struct VTKASMFILTERS_EXPORT Bounds
 VTKASMFILTERS_EXPORT Bounds ComputeBounds(
   const double* xyz, const std::vector<Index>& ids, const Execution& execution = {});
 
+/// Centroid of the points xyz[3*id] for id in ids (0 for none), summed in
+/// fixed blocks: the same value whatever the thread count.
+VTKASMFILTERS_EXPORT void ComputeCentroid(const double* xyz, const std::vector<Index>& ids,
+  double centroid[3], const Execution& execution = {});
+
 /// A uniform grid: origin, cubic cell edge, and the number of cells per axis.
 struct VTKASMFILTERS_EXPORT GridSpec
 {

@@ -117,28 +117,48 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   const std::vector<char>& haloSlot, const Execution& execution)
 {
   const Index total = static_cast<Index>(ids.size());
-  // The member slots no sample covers hold the unclaimed points.
-  std::vector<char> covered(static_cast<std::size_t>(total), 0);
-  Index claimed = 0;
-  for (const Sample& s : result.Samples)
-  {
-    std::fill(covered.begin() + s.MemberBegin, covered.begin() + s.MemberBegin + s.ClusterSize, 1);
-    claimed += s.ClusterSize;
-  }
-  if (claimed == total || result.Samples.empty())
+  const Index samples = static_cast<Index>(result.Samples.size());
+  if (samples == 0)
   {
     return;
   }
+  // Samples come in slot order, so the slots no sample covers are the gaps
+  // between their member ranges: they hold the unclaimed points.
   std::vector<Index> unclaimed;
-  unclaimed.reserve(static_cast<std::size_t>(total - claimed));
-  for (Index slot = 0; slot < total; ++slot)
-  {
-    if (!covered[slot] && (haloSlot.empty() || !haloSlot[slot]))
+  auto collect = [&](Index begin, Index end) {
+    for (Index slot = begin; slot < end; ++slot)
     {
-      unclaimed.push_back(result.Members[slot]);
+      if (haloSlot.empty() || !haloSlot[slot])
+      {
+        unclaimed.push_back(result.Members[slot]);
+      }
     }
+  };
+  Index cursor = 0;
+  for (const Sample& s : result.Samples)
+  {
+    collect(cursor, s.MemberBegin);
+    cursor = s.MemberBegin + s.ClusterSize;
   }
-  const Index samples = static_cast<Index>(result.Samples.size());
+  collect(cursor, total);
+  if (unclaimed.empty())
+  {
+    if (cursor != total || result.Samples[0].MemberBegin != 0)
+    {
+      // Only halo points were left out: close the gaps.
+      std::vector<Index> members;
+      members.reserve(static_cast<std::size_t>(total));
+      for (Sample& s : result.Samples)
+      {
+        const Index begin = static_cast<Index>(members.size());
+        members.insert(members.end(), result.Members.begin() + s.MemberBegin,
+          result.Members.begin() + s.MemberBegin + s.ClusterSize);
+        s.MemberBegin = begin;
+      }
+      result.Members.swap(members);
+    }
+    return;
+  }
   std::vector<double> positions(static_cast<std::size_t>(3 * samples));
   std::vector<Index> sampleIds(static_cast<std::size_t>(samples));
   for (Index s = 0; s < samples; ++s)
@@ -146,7 +166,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
     std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
     sampleIds[s] = s;
   }
-  const Neighbors tree(positions.data(), sampleIds);
+  const Neighbors tree(positions.data(), sampleIds, execution);
   std::vector<Index> owner(unclaimed.size());
   execution.Run(0, static_cast<Index>(unclaimed.size()), [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
@@ -173,19 +193,38 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
       joined[fill[owner[i]]++] = unclaimed[i];
     }
   }
-  std::vector<Index> members;
-  members.reserve(static_cast<std::size_t>(claimed) + unclaimed.size());
+  std::vector<Index> begin(static_cast<std::size_t>(samples) + 1, 0);
   for (Index s = 0; s < samples; ++s)
   {
-    Sample& sample = result.Samples[s];
-    const Index begin = static_cast<Index>(members.size());
-    members.insert(members.end(), result.Members.begin() + sample.MemberBegin,
-      result.Members.begin() + sample.MemberBegin + sample.ClusterSize);
-    members.insert(members.end(), joined.begin() + extra[s], joined.begin() + extra[s + 1]);
-    sample.MemberBegin = begin;
-    sample.ClusterSize = static_cast<Index>(members.size()) - begin;
+    begin[s + 1] = begin[s] + result.Samples[s].ClusterSize + (extra[s + 1] - extra[s]);
   }
+  std::vector<Index> members(static_cast<std::size_t>(begin[samples]));
+  execution.Run(0, samples, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      Sample& sample = result.Samples[s];
+      const auto own = result.Members.begin() + sample.MemberBegin;
+      const auto out = std::copy(own, own + sample.ClusterSize, members.begin() + begin[s]);
+      std::copy(joined.begin() + extra[s], joined.begin() + extra[s + 1], out);
+      sample.MemberBegin = begin[s];
+      sample.ClusterSize = begin[s + 1] - begin[s];
+    }
+  });
   result.Members.swap(members);
+}
+
+// The shares of Eq. 4 with w_c = 1 (n_c per cell), and the capacities.
+std::vector<double> UniformCellShares(const CellGrid& grid, std::vector<Index>& capacity)
+{
+  const Index cells = grid.NumberOfCells();
+  capacity.resize(static_cast<std::size_t>(cells));
+  std::vector<double> share(static_cast<std::size_t>(cells));
+  for (Index c = 0; c < cells; ++c)
+  {
+    capacity[c] = grid.CellSizeOf(c);
+    share[c] = static_cast<double>(capacity[c]);
+  }
+  return share;
 }
 
 std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
@@ -305,14 +344,22 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     return result;
   }
 
-  // 2. PCA of every cell (steps i-iv).
-  std::vector<CellFrame> frames(static_cast<std::size_t>(cells));
-  execution.Run(0, cells, [&](Index b, Index e) {
-    for (Index c = b; c < e; ++c)
-    {
-      frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
-    }
-  });
+  // 2. PCA of every cell (steps i-iv). Only the surface-variation weight
+  // needs every cell's frame before the budgets; otherwise a cell's frame is
+  // computed with its key points below, while its points are in cache.
+  const bool framesFirst =
+    !parameters.CellBudget && parameters.Weight == WeightMode::SurfaceVariation;
+  std::vector<CellFrame> frames;
+  if (framesFirst)
+  {
+    frames.resize(static_cast<std::size_t>(cells));
+    execution.Run(0, cells, [&](Index b, Index e) {
+      for (Index c = b; c < e; ++c)
+      {
+        frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+      }
+    });
+  }
   if (execution.Report(0.3))
   {
     result.Aborted = true;
@@ -339,7 +386,9 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   else
   {
     std::vector<Index> capacity;
-    const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
+    const std::vector<double> share = framesFirst
+      ? CellShares(frames, grid, parameters, 1.0, capacity)
+      : UniformCellShares(grid, capacity);
     budget = ApportionBudget(share, capacity, target);
   }
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);
@@ -357,11 +406,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
   else
   {
-    for (Index id : ids)
-    {
-      cloudCentroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
-    }
-    cloudCentroid /= static_cast<double>(total);
+    ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
   }
 
   KeyPointRule rule;
@@ -384,9 +429,9 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
           result.Members.begin() + grid.CellStart[c]);
         continue;
       }
-      const CellFrame& frame = frames[c];
       const Index* points = grid.CellPoints(c);
       const Index n = grid.CellSizeOf(c);
+      const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(xyz, points, n);
       KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
       const std::vector<Group> groups =
         CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]));
