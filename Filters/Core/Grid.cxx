@@ -482,14 +482,19 @@ double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bo
   {
     return 0.0;
   }
-  std::vector<Index> subset;
-  subset.reserve(ids.size() / static_cast<std::size_t>(stride) + 1);
-  for (std::size_t i = 0; i < ids.size(); i += static_cast<std::size_t>(stride))
-  {
-    subset.push_back(ids[i]);
-  }
+  // A compact copy: the search's passes then read a fraction of the memory.
+  const std::size_t m = (ids.size() + static_cast<std::size_t>(stride) - 1) / static_cast<std::size_t>(stride);
+  std::vector<double> subset(3 * m);
+  std::vector<Index> subsetIds(m);
+  execution.Run(0, static_cast<Index>(m), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      std::copy_n(xyz + 3 * ids[static_cast<std::size_t>(i * stride)], 3, &subset[3 * i]);
+      subsetIds[i] = i;
+    }
+  });
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
-    return static_cast<double>(CountOccupiedCells(xyz, subset, spec, execution));
+    return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));
   });
 }
 
