@@ -94,7 +94,9 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     }
     return n;
   };
-  auto removalCost = [&](Index s) {
+  // Stops as soon as the cost reaches `limit` (the move is then refused
+  // whatever the rest would add; `heirs` is complete only below the limit).
+  auto removalCost = [&](Index s, double limit) {
     double cost = 0.0;
     heirs.clear();
     const Index cell = static_cast<Index>(
@@ -124,6 +126,10 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
         }
       }
       cost = std::max(cost, best);
+      if (!(cost < limit))
+      {
+        return cost;
+      }
       if (heir >= 0 && std::find(heirs.begin(), heirs.end(), heir) == heirs.end())
       {
         heirs.push_back(heir);
@@ -204,7 +210,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
         break;
       }
       const Index s = candidates[next++];
-      if (!(removalCost(s) < distance2[g]))
+      if (!(removalCost(s, distance2[g]) < distance2[g]))
       {
         continue;
       }
