@@ -68,8 +68,27 @@ namespace asmvtk
 {
 using asmcore::Index;
 
-/// Width of the halo, in grid cells, sent around the cells a process owns.
+/// Width of the halo, in grid cells, sent around the cells a process owns
+/// (paper mode; see HaloRingsFor).
 constexpr int HaloRings = 2;
+
+/// Extra rings of the feature-preserving mode's halo beyond
+/// asmcore::InfluenceRingsOf: the repair of empty clusters reads the
+/// cluster sizes of samples two rings away (vtkASMDistributedFeature.cxx).
+constexpr int FeatureHaloMargin = 2;
+
+/// The halo width of a run: HaloRings in Paper mode; in the
+/// feature-preserving mode InfluenceRingsOf(parameters) + FeatureHaloMargin
+/// (at least HaloRings), so that every owned cell's samples and clusters
+/// come out as in a one-process run.
+int HaloRingsFor(const asmcore::SimplifyParameters& parameters);
+
+/// Budgets of cells (in ascending key order) by the rule of the mode:
+/// Eq. 4 shares and ApportionBudget (Paper), or shares w_c * n_c^gamma
+/// (BudgetExponent) and ApportionWithCoverage (CoverEveryCell).
+std::vector<Index> ApportionCells(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const asmcore::SimplifyParameters& parameters,
+  Index target);
 
 /// True when the run takes the distributed path: `controller` has several
 /// processes, or `always` and there is a controller (one process then gives
@@ -164,14 +183,26 @@ struct SimplifyShare
   std::vector<Index> Budgets;           ///< their budgets (global apportionment)
   double Centroid[3] = { 0, 0, 0 };     ///< of the whole cloud
   double Diagonal = 0.0;                ///< of the whole cloud's bounding box
+  /// Feature mode: every cell of every process, ascending, and its budget.
+  std::vector<std::uint64_t> AllKeys;
+  std::vector<Index> AllBudgets;
 
-  /// Budget of a cell (0 for cells owned elsewhere: halo cells).
+  /// Budget of a cell (-1 for cells owned elsewhere: halo cells).
   Index BudgetOf(std::uint64_t key) const;
+  /// Feature mode: the budget of any cell, halo cells included (0 if unknown).
+  Index TrueBudgetOf(std::uint64_t key) const;
+  /// Whether this process owns the cell.
+  bool Owns(std::uint64_t key) const;
 };
+
+/// Collective (feature mode): every process's owned cells and budgets into
+/// share.AllKeys / AllBudgets on every process (a few numbers per cell).
+void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the
 /// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,
-/// redistribution with a halo of HaloRings cells, and the global budgets.
+/// redistribution with a halo of HaloRingsFor(parameters) cells, and the
+/// global budgets (feature mode: also every cell's, ShareAllBudgets).
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
   const std::vector<Index>& ids, const asmcore::SimplifyParameters& parameters);
 

@@ -1,11 +1,17 @@
 """MPI test, run under `mpiexec -n K pvbatch --mpi --symmetric` (every
 process runs this script): the bunny split over the K processes in an
 interleaved way (every grid cell is split; each process holds its points in
-reverse order), simplified to exactly N_s = 1800 points with the wrapped
+reverse order), simplified to exactly N_s points with the wrapped
 vtkASMSimplify (AlwaysDistribute on, so K = 1 takes the same path), then
 measured by vtkKeyPointError. Process 0 gathers the output and writes
 sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
+
+Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
+FEATURE_PRESERVING mode, N_s = 3000 with SamplesPerCell 4, a finer grid so
+that each process's halo of 7 cell rings does not cover the whole bunny;
+FillHoles stays at its default: distributed runs switch it off with a
+warning).
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -21,7 +27,8 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
-NS = 1800
+MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"
+NS = 1800 if MODE == "paper" else 3000
 controller = vtkMultiProcessController.GetGlobalController()
 rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
@@ -48,7 +55,11 @@ asm.SetInputData(piece)
 asm.SetTargetModeToNumberOfOutputPoints()
 asm.SetNumberOfOutputPoints(NS)
 asm.AlwaysDistributeOn()
-asm.SetMode(vtkASMSimplify.PAPER)  # distributed runs use the paper mode for now
+if MODE == "paper":
+    asm.SetMode(vtkASMSimplify.PAPER)
+else:
+    assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
+    asm.SetSamplesPerCell(4.0)
 asm.Update()
 out = asm.GetOutput()
 
@@ -85,5 +96,6 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
 if rank == 0:
     order = np.lexsort(table[:, 2::-1].T)
-    np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()))
+    np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()),
+             ns=NS, mode=MODE)
     print("K = %d: %d output points, figures %s" % (size, len(table), figures))
