@@ -15,24 +15,34 @@
  * 2. One owner per cell. Cells are cut into K slabs along the grid's longest
  *    axis, balanced by point counts (a histogram of the axis index reduced
  *    over the processes). Every point is sent to the owner of its cell, and
- *    to the processes owning a cell within HaloRings cells of it (halo
- *    points: neighbours only, no samples; used by the curvature estimates).
+ *    to the processes owning a cell within HaloRingsFor(parameters) cells of
+ *    it (halo points). Paper mode: HaloRings = 2 (neighbours only, no
+ *    samples; used by the curvature estimates). Feature mode: see 7.
  *    Coordinates (as doubles) and every numeric point-data array travel in
  *    one record per point, with the sending process and point id.
  * 3. A canonical order. A process sorts the points it received by cell key,
  *    then coordinates, then array values, so a cell's points reach the core
  *    in the same order whatever the partition. The serial path orders them
- *    by input id instead (and is left unchanged), which changes which key
- *    points a cell keeps when its budget is below its key point count (about
- *    1 sample in 8 moves on the bunny when the input order is shuffled).
- *    So a one-process run uses this path only with AlwaysDistribute on; then
- *    1, 2, 3... processes give the same points. (ParaView built with MPI
- *    has an MPI controller with one process even in the built-in session,
- *    so one process cannot tell "mpiexec -n 1" from a desktop session.)
+ *    by input id instead (and is left unchanged). The core's per-cell
+ *    decisions are made on values, not positions (key points by prominence,
+ *    Lloyd seeds by distance; Paper mode's random choice among key clusters
+ *    draws them in the order of their extreme points' coordinates), so the
+ *    serial path gives the same points as this one (the bunny in input,
+ *    reversed or shuffled order: none moves); what remains order-dependent
+ *    is exact ties between distinct points (broken by position) and
+ *    floating-point summation order. A one-process run still takes the
+ *    serial path unless AlwaysDistribute is on (ParaView built with MPI has
+ *    an MPI controller with one process even in the built-in session, so
+ *    one process cannot tell "mpiexec -n 1" from a desktop session), and
+ *    the serial path runs FillHoles (feature mode), which distributed runs
+ *    do not (7): with FillHoles on, only AlwaysDistribute makes K = 1 match
+ *    K = 2, 3.
  * 4. One global budget. The owners' (cell key, point count, surface
- *    variation) are gathered on process 0, which computes the shares of
- *    Eq. 4 and apportions N_s exactly as the serial code does (cells in key
- *    order, largest remainder), and scatters the budgets back.
+ *    variation) are gathered on process 0, which computes the shares and
+ *    apportions N_s exactly as the serial code does (cells in key order) by
+ *    the mode's rule (ApportionCells: Eq. 4 and largest remainder in Paper
+ *    mode; n_c^BudgetExponent shares and ApportionWithCoverage with
+ *    CoverEveryCell in the feature mode), and scatters the budgets back.
  * 5. Figures (AKPE, MKPE, counts) are sums and maxima reduced over the
  *    processes; per-cell seeds come from the cell key, as in serial runs.
  * 6. Curvature arrays are estimated by the owner of a sample's cell from the
@@ -42,12 +52,32 @@
  *    are well inside; only with very few points per cell could a
  *    neighbourhood reach past the halo, and the estimate would then use the
  *    nearest points available).
+ * 7. The feature-preserving mode (vtkASMDistributedFeature.cxx). A cell's
+ *    samples and clusters depend on the points within
+ *    asmcore::InfluenceRingsOf(parameters) rings of cells (key point
+ *    validation across borders: 1; each CrossCellIterations Lloyd step: 2;
+ *    the final assignment: 2), given the grid and the budgets. The halo is
+ *    that plus FeatureHaloMargin = 2 rings (7 by default), for the repair of
+ *    empty clusters (FillEmptyClusters reads cluster sizes two rings away).
+ *    Every process learns every cell's budget (ShareAllBudgets), and the
+ *    core simplifies the halo cells too with their TRUE budgets (hooks
+ *    CellBudget = TrueBudgetOf, OutputCell = Owns): their samples are exact
+ *    wherever an owned cell can see them, and only the owned cells' samples
+ *    are output, with all their members (halo points included; points of
+ *    owned cells that join a halo cell's sample are output by that cell's
+ *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
+ *    global step) and is switched off with a warning; points that no sample
+ *    within the searched rings takes (only when some cells get no sample)
+ *    join the nearest sample this process holds, which may differ from the
+ *    global nearest; an empty-cluster repair that chains over more than two
+ *    rings could differ from a one-process run (not seen in the tests).
  *
  * Only numeric point-data arrays travel (string arrays are dropped with a
  * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
  * The core runs unchanged on each process's points through hooks in
- * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid); halo cells
- * are passed to it too (budget -1) so cross-cell steps can see neighbours.
+ * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
+ * halo cells are passed to it too (Paper: budget -1, neighbours only;
+ * feature mode: true budgets, not output).
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h
