@@ -578,8 +578,7 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
 {
   if (comm.Size() == 1)
   {
-    return asmcore::ApportionBudget(asmcore::CellShares(capacity, variation, parameters),
-      capacity, target);
+    return ApportionCells(capacity, variation, parameters, target);
   }
   // Cells travel as (key / 2^32, key % 2^32, count, variation) as doubles:
   // each part is exact (keys reach 2^63, beyond a double's 2^53).
@@ -624,8 +623,7 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
       cap[i] = static_cast<Index>(all[W * order[i] + 2]);
       var[i] = all[W * order[i] + 3];
     }
-    const std::vector<Index> sorted =
-      asmcore::ApportionBudget(asmcore::CellShares(cap, var, parameters), cap, target);
+    const std::vector<Index> sorted = ApportionCells(cap, var, parameters, target);
     for (std::size_t i = 0; i < cells; ++i)
     {
       budgets[order[i]] = static_cast<double>(sorted[i]); // back in gathered order
@@ -693,7 +691,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
 
   // 2. Owners, redistribution with the halo, canonical order.
   const SlabPartition slabs = MakeSlabPartition(comm, share.Grid, xyz, ids);
-  share.Cloud = Redistribute(comm, input, xyz, ids, slabs, HaloRings);
+  share.Cloud = Redistribute(comm, input, xyz, ids, slabs, HaloRingsFor(parameters));
 
   // 3. The owned cells (consecutive runs of a key), and one global budget.
   const LocalCloud& cloud = share.Cloud;
@@ -721,6 +719,10 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   }
   share.Budgets = GlobalBudgets(comm, share.OwnedKeys, capacity, variation, parameters,
     std::min(parameters.NumberOfSamples, total));
+  if (parameters.Mode == asmcore::SimplifyMode::FeaturePreserving)
+  {
+    ShareAllBudgets(comm, share); // halo cells need their true budgets
+  }
   return share;
 }
 } // namespace asmvtk

@@ -15,24 +15,34 @@
  * 2. One owner per cell. Cells are cut into K slabs along the grid's longest
  *    axis, balanced by point counts (a histogram of the axis index reduced
  *    over the processes). Every point is sent to the owner of its cell, and
- *    to the processes owning a cell within HaloRings cells of it (halo
- *    points: neighbours only, no samples; used by the curvature estimates).
+ *    to the processes owning a cell within HaloRingsFor(parameters) cells of
+ *    it (halo points). Paper mode: HaloRings = 2 (neighbours only, no
+ *    samples; used by the curvature estimates). Feature mode: see 7.
  *    Coordinates (as doubles) and every numeric point-data array travel in
  *    one record per point, with the sending process and point id.
  * 3. A canonical order. A process sorts the points it received by cell key,
  *    then coordinates, then array values, so a cell's points reach the core
  *    in the same order whatever the partition. The serial path orders them
- *    by input id instead (and is left unchanged), which changes which key
- *    points a cell keeps when its budget is below its key point count (about
- *    1 sample in 8 moves on the bunny when the input order is shuffled).
- *    So a one-process run uses this path only with AlwaysDistribute on; then
- *    1, 2, 3... processes give the same points. (ParaView built with MPI
- *    has an MPI controller with one process even in the built-in session,
- *    so one process cannot tell "mpiexec -n 1" from a desktop session.)
+ *    by input id instead (and is left unchanged). The core's per-cell
+ *    decisions are made on values, not positions (key points by prominence,
+ *    Lloyd seeds by distance; Paper mode's random choice among key clusters
+ *    draws them in the order of their extreme points' coordinates), so the
+ *    serial path gives the same points as this one (the bunny in input,
+ *    reversed or shuffled order: none moves); what remains order-dependent
+ *    is exact ties between distinct points (broken by position) and
+ *    floating-point summation order. A one-process run still takes the
+ *    serial path unless AlwaysDistribute is on (ParaView built with MPI has
+ *    an MPI controller with one process even in the built-in session, so
+ *    one process cannot tell "mpiexec -n 1" from a desktop session), and
+ *    the serial path runs FillHoles (feature mode), which distributed runs
+ *    do not (7): with FillHoles on, only AlwaysDistribute makes K = 1 match
+ *    K = 2, 3.
  * 4. One global budget. The owners' (cell key, point count, surface
- *    variation) are gathered on process 0, which computes the shares of
- *    Eq. 4 and apportions N_s exactly as the serial code does (cells in key
- *    order, largest remainder), and scatters the budgets back.
+ *    variation) are gathered on process 0, which computes the shares and
+ *    apportions N_s exactly as the serial code does (cells in key order) by
+ *    the mode's rule (ApportionCells: Eq. 4 and largest remainder in Paper
+ *    mode; n_c^BudgetExponent shares and ApportionWithCoverage with
+ *    CoverEveryCell in the feature mode), and scatters the budgets back.
  * 5. Figures (AKPE, MKPE, counts) are sums and maxima reduced over the
  *    processes; per-cell seeds come from the cell key, as in serial runs.
  * 6. Curvature arrays are estimated by the owner of a sample's cell from the
@@ -42,12 +52,32 @@
  *    are well inside; only with very few points per cell could a
  *    neighbourhood reach past the halo, and the estimate would then use the
  *    nearest points available).
+ * 7. The feature-preserving mode (vtkASMDistributedFeature.cxx). A cell's
+ *    samples and clusters depend on the points within
+ *    asmcore::InfluenceRingsOf(parameters) rings of cells (key point
+ *    validation across borders: 1; each CrossCellIterations Lloyd step: 2;
+ *    the final assignment: 2), given the grid and the budgets. The halo is
+ *    that plus FeatureHaloMargin = 2 rings (7 by default), for the repair of
+ *    empty clusters (FillEmptyClusters reads cluster sizes two rings away).
+ *    Every process learns every cell's budget (ShareAllBudgets), and the
+ *    core simplifies the halo cells too with their TRUE budgets (hooks
+ *    CellBudget = TrueBudgetOf, OutputCell = Owns): their samples are exact
+ *    wherever an owned cell can see them, and only the owned cells' samples
+ *    are output, with all their members (halo points included; points of
+ *    owned cells that join a halo cell's sample are output by that cell's
+ *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
+ *    global step) and is switched off with a warning; points that no sample
+ *    within the searched rings takes (only when some cells get no sample)
+ *    join the nearest sample this process holds, which may differ from the
+ *    global nearest; an empty-cluster repair that chains over more than two
+ *    rings could differ from a one-process run (not seen in the tests).
  *
  * Only numeric point-data arrays travel (string arrays are dropped with a
  * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
  * The core runs unchanged on each process's points through hooks in
- * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid); halo cells
- * are passed to it too (budget -1) so cross-cell steps can see neighbours.
+ * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
+ * halo cells are passed to it too (Paper: budget -1, neighbours only;
+ * feature mode: true budgets, not output).
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h
@@ -68,8 +98,27 @@ namespace asmvtk
 {
 using asmcore::Index;
 
-/// Width of the halo, in grid cells, sent around the cells a process owns.
+/// Width of the halo, in grid cells, sent around the cells a process owns
+/// (paper mode; see HaloRingsFor).
 constexpr int HaloRings = 2;
+
+/// Extra rings of the feature-preserving mode's halo beyond
+/// asmcore::InfluenceRingsOf: the repair of empty clusters reads the
+/// cluster sizes of samples two rings away (vtkASMDistributedFeature.cxx).
+constexpr int FeatureHaloMargin = 2;
+
+/// The halo width of a run: HaloRings in Paper mode; in the
+/// feature-preserving mode InfluenceRingsOf(parameters) + FeatureHaloMargin
+/// (at least HaloRings), so that every owned cell's samples and clusters
+/// come out as in a one-process run.
+int HaloRingsFor(const asmcore::SimplifyParameters& parameters);
+
+/// Budgets of cells (in ascending key order) by the rule of the mode:
+/// Eq. 4 shares and ApportionBudget (Paper), or shares w_c * n_c^gamma
+/// (BudgetExponent) and ApportionWithCoverage (CoverEveryCell).
+std::vector<Index> ApportionCells(const std::vector<Index>& capacity,
+  const std::vector<double>& variation, const asmcore::SimplifyParameters& parameters,
+  Index target);
 
 /// True when the run takes the distributed path: `controller` has several
 /// processes, or `always` and there is a controller (one process then gives
@@ -164,14 +213,26 @@ struct SimplifyShare
   std::vector<Index> Budgets;           ///< their budgets (global apportionment)
   double Centroid[3] = { 0, 0, 0 };     ///< of the whole cloud
   double Diagonal = 0.0;                ///< of the whole cloud's bounding box
+  /// Feature mode: every cell of every process, ascending, and its budget.
+  std::vector<std::uint64_t> AllKeys;
+  std::vector<Index> AllBudgets;
 
-  /// Budget of a cell (0 for cells owned elsewhere: halo cells).
+  /// Budget of a cell (-1 for cells owned elsewhere: halo cells).
   Index BudgetOf(std::uint64_t key) const;
+  /// Feature mode: the budget of any cell, halo cells included (0 if unknown).
+  Index TrueBudgetOf(std::uint64_t key) const;
+  /// Whether this process owns the cell.
+  bool Owns(std::uint64_t key) const;
 };
+
+/// Collective (feature mode): every process's owned cells and budgets into
+/// share.AllKeys / AllBudgets on every process (a few numbers per cell).
+void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the
 /// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,
-/// redistribution with a halo of HaloRings cells, and the global budgets.
+/// redistribution with a halo of HaloRingsFor(parameters) cells, and the
+/// global budgets (feature mode: also every cell's, ShareAllBudgets).
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
   const std::vector<Index>& ids, const asmcore::SimplifyParameters& parameters);
 

@@ -43,6 +43,11 @@ set(ASM_FILTERS_PRIVATE
   vtkASMDistributed
   vtkASMDistributedMetrics
 )
+# Private sources declared in another private header (paths relative to
+# Filters/): vtkASMDistributedFeature.cxx implements part of vtkASMDistributed.h.
+set(ASM_FILTERS_EXTRA_SOURCES
+  vtkASMDistributedFeature.cxx
+)
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
@@ -62,6 +67,9 @@ set(_asm_private_headers)
 foreach (_asm_private IN LISTS ASM_FILTERS_PRIVATE)
   list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_private}.cxx")
   list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_private}.h")
+endforeach ()
+foreach (_asm_extra IN LISTS ASM_FILTERS_EXTRA_SOURCES)
+  list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_extra}")
 endforeach ()
 foreach (_asm_core IN LISTS ASM_FILTERS_CORE)
   list(APPEND _asm_sources "${_asm_filters_dir}/Core/${_asm_core}.cxx")

@@ -154,13 +154,6 @@ int vtkASMSimplify::RequestData(
   asmcore::SimplifyParameters parameters;
   parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
                                         : asmcore::SimplifyMode::FeaturePreserving;
-  if (distributed && parameters.Mode != asmcore::SimplifyMode::Paper)
-  {
-    // The feature-preserving steps (cross-cell validation and Lloyd, hole
-    // filling, its budget rule) are not distributed yet.
-    vtkWarningMacro(<< "Distributed runs use the paper's mode (Mode = Paper) for now.");
-    parameters.Mode = asmcore::SimplifyMode::Paper;
-  }
   parameters.NumberOfSamples = target;
   parameters.CellSize = this->CellSize;
   parameters.SamplesPerCell = this->SamplesPerCell;
@@ -168,6 +161,20 @@ int vtkASMSimplify::RequestData(
     ? asmcore::WeightMode::SurfaceVariation
     : asmcore::WeightMode::Uniform;
   parameters.CurvatureWeight = this->CurvatureWeight;
+  // Options of the feature mode that the distributed budget rule and halo
+  // width depend on.
+  parameters.CoverEveryCell = this->CoverEveryCell;
+  parameters.BudgetExponent = this->BudgetExponent;
+  parameters.CrossCellIterations = this->CrossCellIterations;
+  parameters.FillHoles = this->FillHoles;
+  if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving &&
+    parameters.FillHoles)
+  {
+    // Hole filling ranks every sample and point of the cloud: not distributed.
+    vtkWarningMacro(<< "FillHoles is not supported in distributed runs: switched off (the "
+                       "output then does not depend on the number of processes).");
+    parameters.FillHoles = false;
+  }
   vtkPointData* inPD = input->GetPointData();
   asmvtk::SimplifyShare share;
   if (distributed)
@@ -184,7 +191,17 @@ int vtkASMSimplify::RequestData(
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
     parameters.Grid = &share.Grid;
-    parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };
+    if (parameters.Mode == asmcore::SimplifyMode::Paper)
+    {
+      parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };
+    }
+    else
+    {
+      // Halo cells are simplified too, with their true budgets, as context
+      // for the cross-cell steps; only the owned cells' samples are output.
+      parameters.CellBudget = [&share](std::uint64_t key) { return share.TrueBudgetOf(key); };
+      parameters.OutputCell = [&share](std::uint64_t key) { return share.Owns(key); };
+    }
     parameters.CloudCentroid = share.Centroid;
   }
 
@@ -212,12 +229,8 @@ int vtkASMSimplify::RequestData(
   parameters.KeyPointProminence = this->KeyPointProminence;
   parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
   parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
-  parameters.CoverEveryCell = this->CoverEveryCell;
-  parameters.BudgetExponent = this->BudgetExponent;
   parameters.LloydIterations = this->LloydIterations;
-  parameters.CrossCellIterations = this->CrossCellIterations;
   parameters.InputPointSamples = this->InputPointSamples;
-  parameters.FillHoles = this->FillHoles;
   parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()

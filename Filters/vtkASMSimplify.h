@@ -82,10 +82,12 @@
  * points redistributed to the owners with a halo of neighbouring cells, one
  * budget of exactly N_s over all processes, global AKPE/MKPE); each process
  * outputs the samples of the cells it owns, with "vtkOriginalProcessIds"
- * next to "vtkOriginalPointIds". With AlwaysDistribute on, 1, 2, 3...
- * processes give the same points (up to floating-point summation order).
- * Distributed runs use Mode PAPER for now (a warning says so when
- * FEATURE_PRESERVING is selected). Design and limits: vtkASMDistributed.h.
+ * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
+ * processes give the same points (up to floating-point summation order),
+ * and so does the serial path, except that FillHoles (FEATURE_PRESERVING)
+ * is global and switched off in distributed runs (with a warning): with it
+ * on, a one-process run matches only with AlwaysDistribute. Design and
+ * limits: vtkASMDistributed.h.
  * Without MPI nothing changes.
  *
  * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
@@ -251,7 +253,8 @@ public:
    * FEATURE_PRESERVING: a bounded hole-filling pass (up to four rounds, each
    * followed by a Lloyd step) that moves the samples whose removal costs least
    * (at most HoleFillFraction of them per round) to the input points farthest
-   * from every sample; default on. Global: a distributed run skips it.
+   * from every sample; default on. Global: a distributed run (several
+   * processes, or AlwaysDistribute) switches it off with a warning.
    */
   vtkSetMacro(FillHoles, bool);
   vtkGetMacro(FillHoles, bool);
@@ -428,9 +431,11 @@ public:
   /**
    * With several processes the run is always distributed. When on, a run on
    * one process is distributed too (a cell's points taken in coordinate
-   * order instead of input order), so that 1, 2, 3... processes give the
-   * same points; default off: one process (or no controller) runs the serial
-   * algorithm, unchanged.
+   * order instead of input order; FillHoles off), so that 1, 2, 3...
+   * processes give the same points; default off: one process (or no
+   * controller) runs the serial algorithm, unchanged. Per-cell results do
+   * not depend on the order of the points, so the serial path gives the same
+   * points as 2, 3... processes already, except with FillHoles on.
    */
   vtkSetMacro(AlwaysDistribute, bool);
   vtkGetMacro(AlwaysDistribute, bool);

@@ -4,7 +4,7 @@ parallel (each process makes its share, seeded by process id), simplified to
 
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \\
     mpiexec --oversubscribe -n 2 pvbatch --mpi Examples/Python/mpi_scaling.py \\
-      --points 50000000 [--fraction 0.01] [--always-distribute]
+      --points 50000000 [--fraction 0.01] [--always-distribute] [--mode paper] [--no-fill-holes]
 
 PYTHONPATH must hold the build tree's asmvtk package (build/lib/python3/dist-packages).
 Prints, on process 0: processes, points, output points, wall time of the
@@ -31,6 +31,8 @@ parser.add_argument("--points", type=int, default=50_000_000)
 parser.add_argument("--fraction", type=float, default=0.01)
 parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
+parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
+parser.add_argument("--no-fill-holes", action="store_true")  # distributed runs switch it off anyway
 args = parser.parse_args()
 
 controller = vtkMultiProcessController.GetGlobalController()
@@ -59,6 +61,8 @@ asm.SetInputData(cloud)
 asm.SetOutputFraction(args.fraction)
 asm.SetAlwaysDistribute(args.always_distribute)
 asm.SetGenerateCurvature(not args.no_curvature)
+asm.SetMode(vtkASMSimplify.PAPER if args.mode == "paper" else vtkASMSimplify.FEATURE_PRESERVING)
+asm.SetFillHoles(not args.no_fill_holes)
 controller.Barrier()
 start, cpu_start = time.perf_counter(), time.process_time()
 asm.Update()
@@ -71,6 +75,6 @@ gathered = np.zeros(4 * size)
 controller.AllGather(send, gathered, 4)
 if rank == 0:
     g = gathered.reshape(size, 4)
-    print("processes %d  points %d  output %d  wall %.2f s  CPU s per process %s  peak MiB per process %s"
-          % (size, args.points, int(g[:, 1].sum()), g[:, 0].max(),
+    print("%s  processes %d  points %d  output %d  wall %.2f s  CPU s per process %s  peak MiB per process %s"
+          % (args.mode, size, args.points, int(g[:, 1].sum()), g[:, 0].max(),
              " ".join("%.1f" % c for c in g[:, 3]), " ".join("%.0f" % m for m in g[:, 2])))

@@ -104,6 +104,33 @@ void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count
     }
   });
 }
+// Distributed runs: only the samples of the cells this process outputs (its
+// own), with their members; the others were computed as context.
+void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
+  const CellGrid& grid, const SimplifyParameters& parameters)
+{
+  std::vector<char> output(static_cast<std::size_t>(grid.NumberOfCells()));
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
+  }
+  std::vector<Sample> samples;
+  std::vector<Index> members;
+  for (std::size_t s = 0; s < result.Samples.size(); ++s)
+  {
+    if (!output[info[s].Owner])
+    {
+      continue;
+    }
+    Sample sample = result.Samples[s];
+    const auto begin = result.Members.begin() + sample.MemberBegin;
+    sample.MemberBegin = static_cast<Index>(members.size());
+    members.insert(members.end(), begin, begin + sample.ClusterSize);
+    samples.push_back(sample);
+  }
+  result.Samples.swap(samples);
+  result.Members.swap(members);
+}
 } // namespace
 
 int InfluenceRingsOf(const SimplifyParameters& parameters)
@@ -116,7 +143,10 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
 {
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
-  const Index target = std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  // Distributed runs (Simplify.h): the budgets come from CellBudget.
+  const Index target = parameters.CellBudget
+    ? total
+    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
   if (total == 0 || target == 0)
   {
     return result;
@@ -131,13 +161,21 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     return false;
   };
 
-  // 1. Grid.
-  const Bounds bounds = ComputeBounds(xyz, ids, execution);
-  const double cellSize = parameters.CellSize;
-  const CellGrid original = (cellSize > 0.0 && std::isfinite(cellSize))
-    ? BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution)
-    : BuildAutomaticCellGrid(xyz, ids, bounds,
-        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell), execution);
+  // 1. Grid (given in distributed runs).
+  CellGrid original;
+  if (parameters.Grid)
+  {
+    original = BuildCellGrid(xyz, ids, *parameters.Grid, execution);
+  }
+  else
+  {
+    const Bounds bounds = ComputeBounds(xyz, ids, execution);
+    const double cellSize = parameters.CellSize;
+    original = (cellSize > 0.0 && std::isfinite(cellSize))
+      ? BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution)
+      : BuildAutomaticCellGrid(xyz, ids, bounds,
+          static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell), execution);
+  }
   if (abort(0.1))
   {
     return result;
@@ -201,11 +239,22 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
 
   // 3. Budget: N_c ~ w_c * n_c^gamma, one per cell first when N_s allows.
-  std::vector<Index> capacity;
-  const std::vector<double> share =
-    CellShares(frames, grid, parameters, std::max(0.0, parameters.BudgetExponent), capacity);
-  const std::vector<Index> budget =
-    ApportionWithCoverage(share, capacity, target, parameters.CoverEveryCell);
+  std::vector<Index> budget;
+  if (parameters.CellBudget)
+  {
+    budget.resize(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      budget[c] = std::min(grid.CellSizeOf(c), std::max<Index>(0, parameters.CellBudget(grid.CellKey[c])));
+    }
+  }
+  else
+  {
+    std::vector<Index> capacity;
+    const std::vector<double> share =
+      CellShares(frames, grid, parameters, std::max(0.0, parameters.BudgetExponent), capacity);
+    budget = ApportionWithCoverage(share, capacity, target, parameters.CoverEveryCell);
+  }
 
   // 4. Sampling inside each cell: key samples, then Lloyd with keys fixed.
   SampleSet samples;
@@ -318,7 +367,14 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
 
   // Output samples.
   Eigen::Vector3d cloudCentroid;
-  ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
+  if (parameters.CloudCentroid)
+  {
+    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
+  }
+  else
+  {
+    ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
+  }
   result.Samples.resize(static_cast<std::size_t>(count));
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
@@ -383,6 +439,10 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       out.KeyError = info[s].KeyError;
     }
   });
+  if (parameters.OutputCell)
+  {
+    KeepOutputCells(result, info, grid, parameters);
+  }
   SummarizeKeyPoints(result);
   execution.Report(1.0);
   return result;

@@ -27,8 +27,12 @@
  * InfluenceRingsOf(parameters) <= InfluenceRings rings of cells around it,
  * given the global grid (origin, cell size) and its budget. The budget share
  * of a cell is computed from its own points (and the global mean surface
- * variation with the adaptive weight); the coverage rule for N_s < cells and
- * the hole filling are global and are not supported in distributed runs.
+ * variation with the adaptive weight); the apportionment (with the coverage
+ * rule) is global: a distributed driver computes it over all cells and
+ * passes every cell's budget, halo cells included, through
+ * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
+ * samples are output (vtkASMDistributed.h). The hole filling is global and
+ * is not supported in distributed runs.
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h

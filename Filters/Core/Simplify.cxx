@@ -24,9 +24,10 @@ struct Group
 };
 
 // Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
-// the groups of points that become the cell's samples.
+// the groups of points that become the cell's samples. `xyz` and `points`
+// (the cell's input points) order the key clusters for the random choice.
 std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget,
-  std::uint64_t seed)
+  std::uint64_t seed, const double* xyz, const Index* points)
 {
   std::vector<Group> groups;
   const Index n = static_cast<Index>(q.size());
@@ -47,9 +48,18 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
   }
   if (budget <= keyCount)
   {
-    // §3.3 (iv): N_c of the C_n key points, chosen at random.
+    // §3.3 (iv): N_c of the C_n key points, chosen at random. The clusters
+    // are drawn from in the order of their extreme points' coordinates, not
+    // of their positions in the cell: the choice does not depend on the
+    // order of the input points (nor on how a distributed run split them).
     std::vector<Index> pick(static_cast<std::size_t>(keyCount));
     std::iota(pick.begin(), pick.end(), Index(0));
+    std::sort(pick.begin(), pick.end(), [&](Index a, Index b) {
+      const double* pa = xyz + 3 * points[kc.Extreme[a]];
+      const double* pb = xyz + 3 * points[kc.Extreme[b]];
+      return std::lexicographical_compare(pa, pa + 3, pb, pb + 3) ||
+        (std::equal(pa, pa + 3, pb) && a < b);
+    });
     SplitMix64 rng(seed);
     for (Index i = 0; i < budget; ++i)
     {
@@ -434,7 +444,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
       const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(xyz, points, n);
       KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
       const std::vector<Group> groups =
-        CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]));
+        CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), xyz, points);
 
       Index memberCursor = grid.CellStart[c];
       Index sampleIndex = sampleStart[c];

@@ -66,12 +66,18 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// halo of neighbouring cells, with the agreed grid and budgets.
   ///@{
   const GridSpec* Grid = nullptr; ///< the grid to use instead of one fitted to the points
-  /// Budget N_c of the cell with this key, apportioned over all processes;
-  /// -1 for halo cells (owned by another process: neighbours only, no
-  /// samples, and their points join no sample here). Replaces Eq. 4 on the
-  /// local points; NumberOfSamples is then ignored.
+  /// Budget N_c of the cell with this key, apportioned over all processes.
+  /// Paper mode: -1 for halo cells (owned by another process: neighbours
+  /// only, no samples, and their points join no sample here). Feature mode:
+  /// see OutputCell. Replaces Eq. 4 on the local points; NumberOfSamples is
+  /// then ignored.
   std::function<Index(std::uint64_t cellKey)> CellBudget;
   const double* CloudCentroid = nullptr; ///< centroid of the whole cloud (orients normals)
+  /// Feature-preserving mode: CellBudget gives the TRUE budget of every cell
+  /// passed (halo cells included, so that cross-cell steps see their real
+  /// samples), and only the samples of the cells for which this returns true
+  /// are output (with all their members, halo points included). Unset: all.
+  std::function<bool(std::uint64_t cellKey)> OutputCell;
   ///@}
 };
 

@@ -20,7 +20,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 plugin = os.environ["ASM_PLUGIN"]
 LoadPlugin(plugin, ns=globals())
 data_dir = os.environ["ASM_DATA_DIR"]
-NS = 1800
+MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"  # as TestMPISimplify.py
+NS = 1800 if MODE == "paper" else 3000
 
 reader = PLYReader(FileNames=[os.path.join(data_dir, "bunny.ply")])
 value = Calculator(Input=reader, ResultArrayName="Value", Function="coordsX*10+coordsY",
@@ -32,7 +33,11 @@ cloud = MaskPoints(Input=value, OnRatio=1, MaximumNumberofPoints=10 ** 9, Genera
                    SingleVertexPerCell=1)
 spread = RedistributeDataSet(Input=cloud)
 asm = ASMSimplify(Input=spread, TargetMode="Number Of Output Points",  # noqa: F405
-                  NumberOfOutputPoints=NS, AlwaysDistribute=1, Mode="Paper")
+                  NumberOfOutputPoints=NS, AlwaysDistribute=1)
+if MODE == "paper":
+    asm.Mode = "Paper"
+else:
+    asm.SamplesPerCell = 4.0  # the default mode, FillHoles switched off by the filter
 kpe = KeyPointError(Original=spread, Simplified=asm)  # noqa: F405
 kpe.UpdatePipeline()
 
@@ -60,5 +65,7 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
              "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
 order = np.lexsort(table[:, 2::-1].T)
-np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()))
-print("plugin, %d processes: %d output points, figures %s" % (processes, n, figures))
+assert n == NS and figures["KPE.NumberOfSimplifiedPoints"] == NS, (n, figures)
+np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()),
+         ns=NS, mode=MODE)
+print("plugin, %s mode, %d processes: %d output points, figures %s" % (MODE, processes, n, figures))

@@ -1,11 +1,19 @@
 """MPI test, run under `mpiexec -n K pvbatch --mpi --symmetric` (every
 process runs this script): the bunny split over the K processes in an
 interleaved way (every grid cell is split; each process holds its points in
-reverse order), simplified to exactly N_s = 1800 points with the wrapped
+reverse order), simplified to exactly N_s points with the wrapped
 vtkASMSimplify (AlwaysDistribute on, so K = 1 takes the same path), then
 measured by vtkKeyPointError. Process 0 gathers the output and writes
 sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
+
+Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
+FEATURE_PRESERVING mode, N_s = 3000 with SamplesPerCell 4, a finer grid so
+that each process's halo of 7 cell rings does not cover the whole bunny;
+FillHoles stays at its default: distributed runs switch it off with a
+warning). Optional third argument "serial" (one process only): AlwaysDistribute
+stays off, so the serial path runs (FillHoles off in the feature mode, as a
+distributed run has it); its output must match the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -21,7 +29,9 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
-NS = 1800
+MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"
+NS = 1800 if MODE == "paper" else 3000
+SERIAL = len(sys.argv) > 3 and sys.argv[3] == "serial"
 controller = vtkMultiProcessController.GetGlobalController()
 rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
@@ -47,8 +57,17 @@ asm = vtkASMSimplify()
 asm.SetInputData(piece)
 asm.SetTargetModeToNumberOfOutputPoints()
 asm.SetNumberOfOutputPoints(NS)
-asm.AlwaysDistributeOn()
-asm.SetMode(vtkASMSimplify.PAPER)  # distributed runs use the paper mode for now
+if SERIAL:
+    assert size == 1, "the serial run is a one-process run"
+else:
+    asm.AlwaysDistributeOn()
+if MODE == "paper":
+    asm.SetMode(vtkASMSimplify.PAPER)
+else:
+    assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
+    asm.SetSamplesPerCell(4.0)
+    if SERIAL:
+        asm.FillHolesOff()
 asm.Update()
 out = asm.GetOutput()
 
@@ -83,7 +102,27 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
              "MeanDistanceSimplifiedToOriginal", "PointToPlaneMean", "NumberOfOriginalKeyPoints",
              "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
+# The path taken: the distributed one names the process of each sample's
+# representative point.
+assert (pd.GetArray("vtkOriginalProcessIds") is None) == SERIAL
+local_keys = int(np.sum(vtk_to_numpy(pd.GetArray("KeyPoint")))) if n else 0
+all_keys = vtkDoubleArray()
+controller.AllGatherV(numpy_to_vtk(np.array([local_keys], dtype=np.float64), deep=1), all_keys)
 if rank == 0:
+    # Global figures: exactly N_s points over the processes, the key point
+    # count of the whole output, the error measured on the whole cloud.
+    assert len(table) == NS, len(table)
+    assert figures["NumberOfKeyPoints"] == vtk_to_numpy(all_keys).sum() > 0, figures
+    assert figures["KPE.NumberOfSimplifiedPoints"] == NS, figures
+    assert figures["KPE.NumberOfOriginalPoints"] == len(xyz), figures
+    assert 0 < figures["KPE.AKPE"] <= figures["KPE.MKPE"], figures
+    if MODE == "feature":
+        # InputPointSamples: every output point is an input point, exactly.
+        inputs = set(map(tuple, xyz))
+        assert all(tuple(p) in inputs for p in table[:, :3]), "an output point is not an input point"
+
     order = np.lexsort(table[:, 2::-1].T)
-    np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()))
-    print("K = %d: %d output points, figures %s" % (size, len(table), figures))
+    np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()),
+             ns=NS, mode=MODE, serial=SERIAL)
+    print("%s, K = %d%s: %d output points, figures %s"
+          % (MODE, size, " (serial path)" if SERIAL else "", len(table), figures))
