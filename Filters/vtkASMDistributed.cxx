@@ -682,10 +682,25 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   {
     const double targetCells = static_cast<double>(std::min(parameters.NumberOfSamples, total)) /
       std::max(1.0, parameters.SamplesPerCell);
+    // As the serial search: first on the subsample picked by coordinates
+    // (the same points however the cloud is split), then on all points.
+    const std::vector<double> subset = asmcore::CellSizeSubsample(
+      xyz, ids, static_cast<double>(total), targetCells);
+    double start = 0.0;
+    if (comm.Sum(static_cast<Index>(subset.size())) > 0)
+    {
+      std::vector<Index> subsetIds(subset.size() / 3);
+      std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
+      start = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
+        [&](const asmcore::GridSpec& spec) {
+          return static_cast<double>(CountOccupiedCells(comm, subset.data(), subsetIds, spec));
+        });
+    }
     cellSize = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
       [&](const asmcore::GridSpec& spec) {
         return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec));
-      });
+      },
+      start);
   }
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 

@@ -8,6 +8,8 @@
 #include <memory>
 #include <cmath>
 #include <limits>
+#include <cstring>
+#include <numeric>
 #include <utility>
 
 namespace asmcore
@@ -43,6 +45,19 @@ double Bounds::MaxExtent() const
 }
 
 using namespace occupancy;
+
+namespace
+{
+// A point's coordinates hashed (the bits of the three doubles, mixed).
+inline std::uint64_t CoordinateHash(const double* p)
+{
+  std::uint64_t bits[3];
+  std::memcpy(bits, p, sizeof(bits));
+  SplitMix64 mix(bits[0] ^ ((bits[1] << 21) | (bits[1] >> 43)) ^ ((bits[2] << 42) | (bits[2] >> 22)));
+  return mix.Next();
+}
+
+} // namespace
 
 Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
 {
@@ -452,7 +467,7 @@ double SearchCellSize(const Bounds& bounds, double targetCells, Count&& count, d
 } // namespace
 
 double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
-  const std::function<double(const GridSpec&)>& countOccupied)
+  const std::function<double(const GridSpec&)>& countOccupied, double start)
 {
   const double maxExtent = bounds.MaxExtent();
   if (empty || !(maxExtent > 0.0))
@@ -463,36 +478,73 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   {
     return maxExtent * (1.0 + 1e-9); // one cell for the whole cloud
   }
-  return SearchCellSize(bounds, targetCells, countOccupied);
+  return SearchCellSize(bounds, targetCells, countOccupied, start);
+}
+
+std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index>& ids,
+  double totalPoints, double targetCells, const Execution& execution)
+{
+  std::vector<double> subset;
+  if (totalPoints < 200000.0 || !(targetCells > 1.0))
+  {
+    return subset;
+  }
+  const auto stride = static_cast<std::uint64_t>(
+    std::max(4.0, std::floor(totalPoints / targetCells / 32.0)));
+  // Two passes over fixed blocks: count, then copy (the order of `ids`).
+  const Index n = static_cast<Index>(ids.size());
+  const Index blocks = BlockCount(n, 64, 1 << 15);
+  std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
+  auto picked = [&](Index i) { return CoordinateHash(xyz + 3 * ids[i]) % stride == 0; };
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index k = first; k < last; ++k)
+    {
+      Index count = 0;
+      const Index end = BlockBegin(n, blocks, k + 1);
+      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
+      {
+        count += picked(i) ? 1 : 0;
+      }
+      start[k + 1] = count;
+    }
+  });
+  for (Index k = 0; k < blocks; ++k)
+  {
+    start[k + 1] += start[k];
+  }
+  subset.resize(static_cast<std::size_t>(3 * start[blocks]));
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index k = first; k < last; ++k)
+    {
+      double* out = subset.data() + 3 * start[k];
+      const Index end = BlockBegin(n, blocks, k + 1);
+      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
+      {
+        if (picked(i))
+        {
+          std::copy_n(xyz + 3 * ids[i], 3, out);
+          out += 3;
+        }
+      }
+    }
+  });
+  return subset;
 }
 
 namespace
 {
-// A start for the full search: the search run on every k-th point (k >= 4,
-// and about 32 of them left per target cell when the cloud is dense enough;
-// the occupancy of a sparser subsample is lower by some percent, and the
-// full search corrects that in a pass or two). Returns 0 (no start) for
-// clouds small enough to search on all points.
+// The search on the subsample, as a start for the full search (0: none).
 double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
-  const auto n = static_cast<double>(ids.size());
-  const auto stride = std::max<Index>(4, static_cast<Index>(std::floor(n / targetCells / 32.0)));
-  if (n < 200000.0)
+  const std::vector<double> subset =
+    CellSizeSubsample(xyz, ids, static_cast<double>(ids.size()), targetCells, execution);
+  if (subset.empty())
   {
     return 0.0;
   }
-  // A compact copy: the search's passes then read a fraction of the memory.
-  const std::size_t m = (ids.size() + static_cast<std::size_t>(stride) - 1) / static_cast<std::size_t>(stride);
-  std::vector<double> subset(3 * m);
-  std::vector<Index> subsetIds(m);
-  execution.Run(0, static_cast<Index>(m), [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
-    {
-      std::copy_n(xyz + 3 * ids[static_cast<std::size_t>(i * stride)], 3, &subset[3 * i]);
-      subsetIds[i] = i;
-    }
-  });
+  std::vector<Index> subsetIds(subset.size() / 3);
+  std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));
   });

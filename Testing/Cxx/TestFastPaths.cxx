@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <random>
 #include <thread>
@@ -228,4 +229,57 @@ TEST(FastPaths, KdTreeBuiltInParallelAnswersAlike)
     EXPECT_EQ(a, b);
     EXPECT_EQ(da, db);
   }
+}
+
+TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
+{
+  // The distributed search picks the same subsample as the serial one:
+  // the points are chosen by their coordinates, not by position or process.
+  const Cloud c = asmtest::Sphere(300000, 1.0, 5);
+  std::vector<Index> ids = AllIds(c);
+  const double target = 300000 * 0.05 / 8.0;
+  auto sortedTriples = [](const std::vector<double>& xyz) {
+    std::vector<std::array<double, 3>> t(xyz.size() / 3);
+    for (std::size_t i = 0; i < t.size(); ++i)
+    {
+      t[i] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  const std::vector<double> whole = asmcore::CellSizeSubsample(c.data(), ids, 300000.0, target);
+  ASSERT_GT(whole.size(), 3u * 300000 / 40); // about one point in 7 (>= 1 in 4 * 2)
+  ASSERT_LT(whole.size(), 3u * 300000 / 4);
+  std::shuffle(ids.begin(), ids.end(), std::mt19937_64(3));
+  const std::vector<Index> partA(ids.begin(), ids.begin() + 120000);
+  const std::vector<Index> partB(ids.begin() + 120000, ids.end());
+  std::vector<double> parts = asmcore::CellSizeSubsample(c.data(), partA, 300000.0, target);
+  const std::vector<double> b = asmcore::CellSizeSubsample(c.data(), partB, 300000.0, target, UnevenTwoThreads());
+  parts.insert(parts.end(), b.begin(), b.end());
+  EXPECT_EQ(sortedTriples(parts), sortedTriples(whole));
+  // Small clouds are searched on all points.
+  EXPECT_TRUE(asmcore::CellSizeSubsample(c.data(), partA, 150000.0, target).empty());
+
+  // The distributed form of the search (a start from the subsample's
+  // counts, then all points' counts) finds the serial cell size.
+  const std::vector<Index> all = AllIds(c);
+  const auto bounds = asmcore::ComputeBounds(c.data(), all);
+  std::vector<Index> subsetIds(whole.size() / 3);
+  std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
+  const double start = asmcore::AutomaticCellSize(bounds, target, false, [&](const asmcore::GridSpec& spec) {
+    return static_cast<double>(asmcore::CountOccupiedCells(whole.data(), subsetIds, spec));
+  });
+  const double distributed = asmcore::AutomaticCellSize(bounds, target, false,
+    [&](const asmcore::GridSpec& spec) {
+      return static_cast<double>(asmcore::CountOccupiedCells(c.data(), all, spec));
+    },
+    start);
+  EXPECT_EQ(asmcore::AutomaticCellSize(c.data(), all, bounds, target), distributed);
+  EXPECT_EQ(asmcore::BuildAutomaticCellGrid(c.data(), all, bounds, target).Spec.CellSize, distributed);
+  // The grid built during the search is the grid of that cell size.
+  const asmcore::CellGrid built = asmcore::BuildAutomaticCellGrid(c.data(), all, bounds, target);
+  const asmcore::CellGrid plain = asmcore::BuildCellGrid(c.data(), all, asmcore::GridSpec::Make(bounds, distributed));
+  EXPECT_EQ(built.CellKey, plain.CellKey);
+  EXPECT_EQ(built.CellStart, plain.CellStart);
+  EXPECT_EQ(built.Order, plain.Order);
 }
