@@ -14,6 +14,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -21,9 +22,27 @@
 
 namespace asmvtk
 {
+bool LaunchedByMPIRunner()
+{
+  // Set for every process by Open MPI's mpiexec and by MPICH's and Intel
+  // MPI's Hydra launcher; absent in a desktop session and in a singleton
+  // (an MPI program started on its own, e.g. the paraview GUI, which Open MPI
+  // gives PMIX_* variables but no OMPI_COMM_WORLD_SIZE).
+  for (const char* name : { "OMPI_COMM_WORLD_SIZE", "PMI_SIZE" })
+  {
+    const char* value = std::getenv(name);
+    if (value && *value)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool IsDistributed(vtkMultiProcessController* controller, bool always)
 {
-  return controller != nullptr && (controller->GetNumberOfProcesses() > 1 || always);
+  return controller != nullptr &&
+    (controller->GetNumberOfProcesses() > 1 || always || LaunchedByMPIRunner());
 }
 
 //------------------------------------------------------------------------------

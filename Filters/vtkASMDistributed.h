@@ -120,9 +120,16 @@ std::vector<Index> ApportionCells(const std::vector<Index>& capacity,
   const std::vector<double>& variation, const asmcore::SimplifyParameters& parameters,
   Index target);
 
+/// True when this process was started by an MPI launcher (mpiexec/mpirun of
+/// Open MPI, MPICH or Intel MPI): its environment says so
+/// (OMPI_COMM_WORLD_SIZE, PMI_SIZE).
+bool LaunchedByMPIRunner();
+
 /// True when the run takes the distributed path: `controller` has several
-/// processes, or `always` and there is a controller (one process then gives
-/// the same answer as K). Otherwise the serial path, unchanged.
+/// processes, or one process started by an MPI launcher (`mpiexec -n 1
+/// pvbatch --mpi`: it then gives the same answer as K processes), or
+/// `always` and there is a controller. Otherwise (a desktop session, a
+/// builtin ParaView session, plain VTK) the serial path, unchanged.
 bool IsDistributed(vtkMultiProcessController* controller, bool always);
 
 /// Collective operations of one run (every process must make the same calls

@@ -83,12 +83,14 @@
  * budget of exactly N_s over all processes, global AKPE/MKPE); each process
  * outputs the samples of the cells it owns, with "vtkOriginalProcessIds"
  * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
- * processes give the same points (up to floating-point summation order),
- * and so does the serial path, except that FillHoles (FEATURE_PRESERVING)
- * is global and switched off in distributed runs (with a warning): with it
- * on, a one-process run matches only with AlwaysDistribute. Design and
- * limits: vtkASMDistributed.h.
- * Without MPI nothing changes.
+ * processes give the same points (up to floating-point summation order). A
+ * run on one process takes the distributed path when mpiexec (or another
+ * MPI launcher) started it, or with AlwaysDistribute; FillHoles
+ * (FEATURE_PRESERVING) is global and switched off in distributed runs (with
+ * a warning). The serial path gives the same points too when FillHoles is
+ * off. Design and limits: vtkASMDistributed.h.
+ * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
+ * changes.
  *
  * @sa vtkVoxelGrid vtkMaskPoints vtkPCACurvatureEstimation
  */
@@ -429,13 +431,15 @@ public:
 
   ///@{
   /**
-   * With several processes the run is always distributed. When on, a run on
-   * one process is distributed too (a cell's points taken in coordinate
-   * order instead of input order; FillHoles off), so that 1, 2, 3...
-   * processes give the same points; default off: one process (or no
-   * controller) runs the serial algorithm, unchanged. Per-cell results do
-   * not depend on the order of the points, so the serial path gives the same
-   * points as 2, 3... processes already, except with FillHoles on.
+   * With several processes, or one process started by an MPI launcher
+   * (mpiexec -n 1 pvbatch --mpi), the run is always distributed. When on, any
+   * run with a controller is distributed too (a cell's points taken in
+   * coordinate order instead of input order; FillHoles off), so that it
+   * gives the same points as 2, 3... processes; default off: a desktop or
+   * builtin session (or no controller) runs the serial algorithm,
+   * unchanged. Per-cell results do not depend on the order of the points,
+   * so the serial path gives the same points as 2, 3... processes already,
+   * except with FillHoles on.
    */
   vtkSetMacro(AlwaysDistribute, bool);
   vtkGetMacro(AlwaysDistribute, bool);

@@ -2,7 +2,8 @@
 process runs this script): the bunny split over the K processes in an
 interleaved way (every grid cell is split; each process holds its points in
 reverse order), simplified to exactly N_s points with the wrapped
-vtkASMSimplify (AlwaysDistribute on, so K = 1 takes the same path), then
+vtkASMSimplify (started by mpiexec, so K = 1 takes the distributed path
+too, without AlwaysDistribute), then
 measured by vtkKeyPointError. Process 0 gathers the output and writes
 sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
@@ -11,9 +12,10 @@ Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
 FEATURE_PRESERVING mode, N_s = 3000 with SamplesPerCell 4, a finer grid so
 that each process's halo of 7 cell rings does not cover the whole bunny;
 FillHoles stays at its default: distributed runs switch it off with a
-warning). Optional third argument "serial" (one process only): AlwaysDistribute
-stays off, so the serial path runs (FillHoles off in the feature mode, as a
-distributed run has it); its output must match the distributed runs.
+warning). Optional third argument "serial": pvbatch started without mpiexec
+(one process, AlwaysDistribute off), so the serial path runs (FillHoles off
+in the feature mode, as a distributed run has it); its output must match
+the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -57,10 +59,11 @@ asm = vtkASMSimplify()
 asm.SetInputData(piece)
 asm.SetTargetModeToNumberOfOutputPoints()
 asm.SetNumberOfOutputPoints(NS)
+assert not asm.GetAlwaysDistribute()
 if SERIAL:
     assert size == 1, "the serial run is a one-process run"
-else:
-    asm.AlwaysDistributeOn()
+    assert not any(os.environ.get(v) for v in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE")), \
+        "the serial run is started without mpiexec"
 if MODE == "paper":
     asm.SetMode(vtkASMSimplify.PAPER)
 else:
@@ -70,6 +73,10 @@ else:
         asm.FillHolesOff()
 asm.Update()
 out = asm.GetOutput()
+# The distributed path (every run under mpiexec, K = 1 included) says which
+# process each sample's representative comes from; the serial path does not.
+assert (out.GetPointData().GetArray("vtkOriginalProcessIds") is not None) == (not SERIAL), \
+    "a run under mpiexec is distributed, a run without it is not"
 
 kpe = vtkKeyPointError()
 kpe.SetInputData(0, piece)
