@@ -315,20 +315,25 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     std::vector<Index> order;
     const auto maxMoves = static_cast<Index>(
       std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
+    const std::vector<double> before(samples.Position);
     if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
     {
       break;
     }
-    std::vector<SampleInfo> moved(info.size());
+    std::vector<SampleInfo> regrouped(info.size());
+    std::vector<char> moved(info.size(), 0);
     for (Index s = 0; s < count; ++s)
     {
-      moved[s] = info[order[s]];
-      moved[s].Owner = static_cast<Index>(
+      regrouped[s] = info[order[s]];
+      regrouped[s].Owner = static_cast<Index>(
         std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
+      moved[s] = regrouped[s].Owner != info[order[s]].Owner ||
+        !std::equal(before.begin() + 3 * order[s], before.begin() + 3 * order[s] + 3,
+          samples.Position.begin() + 3 * s);
     }
-    info.swap(moved);
+    info.swap(regrouped);
     // One Lloyd step re-centres the moved samples and their neighbours.
-    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, distance2, execution);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 

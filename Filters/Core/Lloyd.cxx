@@ -256,6 +256,87 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   });
 }
 
+void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
+  std::vector<Index>& assign, std::vector<double>& distance2, const Execution& execution)
+{
+  const Index count = samples.Size();
+  const Index cells = grid.NumberOfCells();
+  for (Index c = 0; c < cells; ++c)
+  {
+    if (samples.Start[c + 1] - samples.Start[c] > LargeCellBudget)
+    {
+      // Such cells search with a k-d tree: search everything again.
+      AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
+      return;
+    }
+  }
+  std::vector<Index> renumber(static_cast<std::size_t>(count));
+  for (Index s = 0; s < count; ++s)
+  {
+    renumber[previous[s]] = s;
+  }
+  const double* pos = samples.Position.data();
+  execution.Run(0, cells, [&](Index b, Index e) {
+    std::vector<Index> near; // the moved samples of the ring
+    for (Index c = b; c < e; ++c)
+    {
+      const Index* ring = neighbors.Of(c);
+      near.clear();
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+        {
+          if (moved[s])
+          {
+            near.push_back(s);
+          }
+        }
+      }
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        const Index before = assign[i] >= 0 ? renumber[assign[i]] : -1;
+        Index best = before;
+        double bestD = distance2[i];
+        auto consider = [&](Index s) {
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
+          }
+        };
+        if (before < 0 || moved[before])
+        {
+          // Its sample left (or it had none): the whole ring again.
+          best = -1;
+          bestD = Infinity;
+          for (int k = 0; k < 27; ++k)
+          {
+            const Index nb = ring[k];
+            for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+            {
+              consider(s);
+            }
+          }
+        }
+        else
+        {
+          // Its sample stayed: only a moved sample can now be nearer.
+          for (Index s : near)
+          {
+            consider(s);
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+      }
+    }
+  });
+}
+
 void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const std::vector<Index>& assign, SampleSet& samples, const Execution& execution)
 {

@@ -4,6 +4,7 @@
 // cuts), the in-plane linking (dense bins) and the level-by-level kd-tree.
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
+#include "Core/Lloyd.h"
 #include "Core/Neighbors.h"
 
 #include "TestHelpers.h"
@@ -282,4 +283,71 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
   EXPECT_EQ(built.CellKey, plain.CellKey);
   EXPECT_EQ(built.CellStart, plain.CellStart);
   EXPECT_EQ(built.Order, plain.Order);
+}
+
+TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
+{
+  // After a few samples move to other cells (as hole filling moves them),
+  // the incremental update gives exactly the assignment searched afresh.
+  const Cloud c = asmtest::Sphere(20000, 1.0, 11);
+  const auto ids = AllIds(c);
+  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
+  const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, 0.2));
+  const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
+  const Index cells = grid.NumberOfCells();
+  // Four samples per cell, on points of the cell (every 4th sample of
+  // every 3rd cell absent, so that some rings are thin).
+  asmcore::SampleSet samples;
+  samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  std::vector<Index> ownerOf;
+  for (Index cell = 0; cell < cells; ++cell)
+  {
+    const Index n = std::min<Index>(cell % 3 == 0 ? 3 : 4, grid.CellSizeOf(cell));
+    for (Index k = 0; k < n; ++k)
+    {
+      const double* p = c.data() + 3 * grid.CellPoints(cell)[k * grid.CellSizeOf(cell) / n];
+      samples.Position.insert(samples.Position.end(), p, p + 3);
+      samples.Fixed.push_back(0);
+      ownerOf.push_back(cell);
+    }
+    samples.Start[cell + 1] = samples.Start[cell] + n;
+  }
+  std::vector<Index> assign, check;
+  std::vector<double> distance2, checkDistance2;
+  asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
+  // Move every 17th sample onto a point of a cell 5 cells further, and
+  // regroup by owner (stable), as FillHoles does.
+  const Index count = samples.Size();
+  std::vector<double> position(samples.Position);
+  for (Index s = 0; s < count; s += 17)
+  {
+    const Index to = (ownerOf[s] + 5) % cells;
+    const double* p = c.data() + 3 * grid.CellPoints(to)[0];
+    std::copy(p, p + 3, position.begin() + 3 * s);
+    ownerOf[s] = to;
+  }
+  std::vector<Index> order(static_cast<std::size_t>(count));
+  std::iota(order.begin(), order.end(), Index(0));
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return ownerOf[a] < ownerOf[b]; });
+  asmcore::SampleSet after;
+  after.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  std::vector<char> moved(static_cast<std::size_t>(count), 0);
+  for (Index s = 0; s < count; ++s)
+  {
+    after.Position.insert(after.Position.end(), position.begin() + 3 * order[s], position.begin() + 3 * order[s] + 3);
+    after.Fixed.push_back(0);
+    ++after.Start[ownerOf[order[s]] + 1];
+    moved[s] = order[s] % 17 == 0 ? 1 : 0;
+  }
+  std::partial_sum(after.Start.begin(), after.Start.end(), after.Start.begin());
+  asmcore::AssignToSamples(c.data(), grid, neighbors, after, check, checkDistance2, {});
+  asmcore::UpdateAssignment(c.data(), grid, neighbors, after, order, moved, assign, distance2, UnevenTwoThreads());
+  EXPECT_EQ(assign, check);
+  EXPECT_EQ(distance2, checkDistance2);
+  Index changed = 0;
+  for (Index i = 0; i < static_cast<Index>(check.size()); ++i)
+  {
+    changed += check[i] >= 0 && order[check[i]] % 17 == 0 ? 1 : 0;
+  }
+  EXPECT_GT(changed, 0) << "some points must now belong to a moved sample";
 }
