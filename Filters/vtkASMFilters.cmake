@@ -52,6 +52,7 @@ set(ASM_FILTERS_EXTRA_SOURCES
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
   Core/GridOccupancy.h
+  Core/GroupBy.h
   vtkASMFilterUtilities.h
 )
 # ============================================================================

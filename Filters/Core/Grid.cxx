@@ -2,6 +2,7 @@
 #include "Grid.h"
 
 #include "GridOccupancy.h"
+#include "GroupBy.h"
 
 #include <algorithm>
 #include <atomic>
@@ -221,49 +222,9 @@ void SortIntoCells(const std::vector<Index>& ids, const std::vector<std::uint64_
 {
   const Index n = static_cast<Index>(ids.size());
   const Index cells = static_cast<Index>(grid.CellKey.size());
-  // Blocks count their points per cell, then scatter them.
-  Index blocks = BlockCount(n, 8, 1 << 16);
-  while (blocks > 1 && blocks * cells > n / 2)
-  {
-    --blocks; // bounded scratch: the per-block counts stay below 4 bytes a point
-  }
-  std::vector<Index> offset(static_cast<std::size_t>(blocks * cells), 0);
-  execution.Run(0, blocks, [&](Index first, Index last) {
-    for (Index k = first; k < last; ++k)
-    {
-      Index* count = offset.data() + k * cells;
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
-      {
-        ++count[cell[i]];
-      }
-    }
-  });
-  grid.CellStart.resize(static_cast<std::size_t>(cells) + 1);
-  Index running = 0;
-  for (Index c = 0; c < cells; ++c)
-  {
-    grid.CellStart[c] = running;
-    for (Index k = 0; k < blocks; ++k)
-    {
-      const Index count = offset[k * cells + c];
-      offset[k * cells + c] = running;
-      running += count;
-    }
-  }
-  grid.CellStart[cells] = running;
-  grid.Order.resize(static_cast<std::size_t>(n));
-  execution.Run(0, blocks, [&](Index first, Index last) {
-    for (Index k = first; k < last; ++k)
-    {
-      Index* next = offset.data() + k * cells;
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
-      {
-        grid.Order[next[cell[i]]++] = ids[i];
-      }
-    }
-  });
+  GroupBy(
+    n, cells, [&](Index i) { return static_cast<Index>(cell[i]); }, [&](Index i) { return ids[i]; },
+    grid.CellStart, grid.Order, execution);
 
   // Ties by id: already so when `ids` ascends (FinitePointIds), else sort
   // each cell.

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "HoleFilling.h"
 
+#include "GroupBy.h"
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -12,6 +15,76 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
+
+// The `look` points with the largest finite distance2, farthest first
+// (ties: the lower slot): the threshold value is found on a copy of the
+// values, then the points above it (and as many at it as needed, lowest
+// slots first) are collected in parallel blocks, in slot order.
+std::vector<Index> FarthestPoints(
+  const std::vector<double>& distance2, Index look, const Execution& execution)
+{
+  const Index n = static_cast<Index>(distance2.size());
+  std::vector<double> finite;
+  finite.reserve(distance2.size());
+  for (double d : distance2)
+  {
+    if (std::isfinite(d))
+    {
+      finite.push_back(d);
+    }
+  }
+  look = std::min<Index>(look, static_cast<Index>(finite.size()));
+  std::vector<Index> far;
+  if (look <= 0)
+  {
+    return far;
+  }
+  std::nth_element(finite.begin(), finite.begin() + (look - 1), finite.end(), std::greater<double>());
+  const double threshold = finite[static_cast<std::size_t>(look - 1)];
+  finite = std::vector<double>();
+  // Every point above the threshold (fewer than `look`), then the lowest
+  // slots at it.
+  const Index blocks = std::max<Index>(1, std::min<Index>(64, n / (1 << 15)));
+  auto blockBegin = [&](Index b) { return n / blocks * b + (n % blocks) * b / blocks; };
+  std::vector<std::vector<Index>> over(static_cast<std::size_t>(blocks));
+  std::vector<std::vector<Index>> at(static_cast<std::size_t>(blocks));
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index b = first; b < last; ++b)
+    {
+      for (Index i = blockBegin(b); i < blockBegin(b + 1); ++i)
+      {
+        if (distance2[i] > threshold && std::isfinite(distance2[i]))
+        {
+          over[b].push_back(i);
+        }
+        else if (distance2[i] == threshold)
+        {
+          at[b].push_back(i);
+        }
+      }
+    }
+  });
+  far.reserve(static_cast<std::size_t>(look));
+  for (const auto& part : over)
+  {
+    far.insert(far.end(), part.begin(), part.end());
+  }
+  for (const auto& part : at)
+  {
+    for (Index i : part)
+    {
+      if (static_cast<Index>(far.size()) >= look)
+      {
+        break;
+      }
+      far.push_back(i);
+    }
+  }
+  std::sort(far.begin(), far.end(), [&](Index a, Index b) {
+    return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
+  });
+  return far;
+}
 
 Index CellOfSlot(const CellGrid& grid, Index slot)
 {
@@ -34,46 +107,32 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     return 0;
   }
   // Members of each sample (point slots), by counting sort.
-  std::vector<Index> start(static_cast<std::size_t>(count) + 1, 0);
-  for (Index s : assign)
-  {
-    if (s >= 0)
-    {
-      ++start[s + 1];
-    }
-  }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<Index> members(static_cast<std::size_t>(start[count]));
-  {
-    std::vector<Index> fill(start.begin(), start.end() - 1);
-    for (Index i = 0; i < points; ++i)
-    {
-      if (assign[i] >= 0)
-      {
-        members[fill[assign[i]]++] = i;
-      }
-    }
-  }
+  std::vector<Index> start;
+  std::vector<Index> members;
+  GroupBy(
+    points, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, start, members,
+    execution);
   // Candidates: the free samples with the most points per unit of spread
   // first (small clusters in dense areas), a few per move.
   std::vector<double> radius(static_cast<std::size_t>(count), Infinity);
-  for (Index s = 0; s < count; ++s)
-  {
-    if (samples.Fixed[s] || start[s + 1] == start[s])
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
     {
-      continue;
+      if (samples.Fixed[s] || start[s + 1] == start[s])
+      {
+        continue;
+      }
+      double r = 0.0;
+      for (Index m = start[s]; m < start[s + 1]; ++m)
+      {
+        r = std::max(r, distance2[members[m]]);
+      }
+      radius[s] = r;
     }
-    double r = 0.0;
-    for (Index m = start[s]; m < start[s + 1]; ++m)
-    {
-      r = std::max(r, distance2[members[m]]);
-    }
-    radius[s] = r;
-  }
+  });
   std::vector<Index> candidates(static_cast<std::size_t>(count));
   std::iota(candidates.begin(), candidates.end(), Index(0));
   const Index keep = std::min<Index>(count, 8 * maxMoves);
-  (void)execution;
   auto smaller = [&](Index a, Index b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); };
   std::partial_sort(candidates.begin(), candidates.begin() + keep, candidates.end(), smaller);
   candidates.resize(static_cast<std::size_t>(keep));
@@ -140,22 +199,9 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   // Gaps: the points farthest from every sample, one per gap (a point
   // within its own gap distance of a gap taken already, in its cell's ring,
   // belongs to that gap).
-  std::vector<Index> far;
-  far.reserve(static_cast<std::size_t>(points));
-  for (Index i = 0; i < points; ++i)
-  {
-    if (std::isfinite(distance2[i]))
-    {
-      far.push_back(i);
-    }
-  }
-  auto fartherFirst = [&](Index a, Index b) {
-    return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
-  };
-  const auto look = static_cast<std::ptrdiff_t>(std::min<std::size_t>(far.size(), 20 * maxMoves));
-  std::nth_element(far.begin(), far.begin() + look, far.end(), fartherFirst);
-  far.resize(static_cast<std::size_t>(look));
-  std::sort(far.begin(), far.end(), fartherFirst);
+  const std::vector<Index> far = FarthestPoints(distance2,
+    static_cast<Index>(std::min<double>(static_cast<double>(points), 20.0 * static_cast<double>(maxMoves))),
+    execution);
   std::vector<Index> gaps;
   std::vector<Index> head(static_cast<std::size_t>(cells), -1); // gaps per cell, chained
   std::vector<Index> chain;

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * A stable counting sort in fixed blocks: items grouped by an integer key,
+ * in parallel, with the same result whatever the thread count (within a
+ * group, items keep their order). Used for the points of each grid cell and
+ * for the members of each sample.
+ */
+#ifndef asm_core_GroupBy_h
+#define asm_core_GroupBy_h
+
+#include "Common.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace asmcore
+{
+/// Groups the items i in [0, n) by key(i) in [0, keys) (items with a
+/// negative key are left out): group k is out[start[k], start[k + 1]),
+/// holding value(i) in increasing i. At most `maxBlocks` blocks of at least
+/// `minBlock` items each; fewer while the per-block counts would exceed
+/// about `scratchPerItem` Index slots per item.
+template <typename KeyOf, typename ValueOf, typename T>
+void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Index>& start,
+  std::vector<T>& out, const Execution& execution, Index maxBlocks = 8, Index minBlock = 1 << 16,
+  double scratchPerItem = 0.5)
+{
+  auto blockBegin = [n](Index blocks, Index b) { return n / blocks * b + (n % blocks) * b / blocks; };
+  Index blocks = std::max<Index>(1, std::min<Index>(maxBlocks, n / std::max<Index>(1, minBlock)));
+  while (blocks > 1 && static_cast<double>(blocks * keys) > scratchPerItem * static_cast<double>(n))
+  {
+    --blocks; // bounded scratch for the per-block counts
+  }
+  std::vector<Index> offset(static_cast<std::size_t>(blocks * keys), 0);
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index b = first; b < last; ++b)
+    {
+      Index* count = offset.data() + b * keys;
+      const Index end = blockBegin(blocks, b + 1);
+      for (Index i = blockBegin(blocks, b); i < end; ++i)
+      {
+        const Index k = key(i);
+        if (k >= 0)
+        {
+          ++count[k];
+        }
+      }
+    }
+  });
+  start.resize(static_cast<std::size_t>(keys) + 1);
+  Index running = 0;
+  for (Index k = 0; k < keys; ++k)
+  {
+    start[k] = running;
+    for (Index b = 0; b < blocks; ++b)
+    {
+      const Index count = offset[b * keys + k];
+      offset[b * keys + k] = running;
+      running += count;
+    }
+  }
+  start[keys] = running;
+  out.resize(static_cast<std::size_t>(running));
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index b = first; b < last; ++b)
+    {
+      Index* next = offset.data() + b * keys;
+      const Index end = blockBegin(blocks, b + 1);
+      for (Index i = blockBegin(blocks, b); i < end; ++i)
+      {
+        const Index k = key(i);
+        if (k >= 0)
+        {
+          out[static_cast<std::size_t>(next[k]++)] = value(i);
+        }
+      }
+    }
+  });
+}
+} // namespace asmcore
+
+#endif
