@@ -450,13 +450,15 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   {
     return subset;
   }
-  const auto stride = static_cast<std::uint64_t>(
-    std::max(4.0, std::floor(totalPoints / targetCells / 32.0)));
-  // Two passes over fixed blocks: count, then copy (the order of `ids`).
+  const double stride = std::max(4.0, std::floor(totalPoints / targetCells / 32.0));
+  // Picked when the hash's high 32 bits fall below 2^32 / stride.
+  const auto below = static_cast<std::uint64_t>(4294967296.0 / stride);
+  // Two passes over fixed blocks: flag and count, then copy (the order of
+  // `ids`).
   const Index n = static_cast<Index>(ids.size());
   const Index blocks = BlockCount(n, 64, 1 << 15);
   std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
-  auto picked = [&](Index i) { return CoordinateHash(xyz + 3 * ids[i]) % stride == 0; };
+  std::vector<unsigned char> picked(static_cast<std::size_t>(n));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -464,7 +466,9 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
       const Index end = BlockBegin(n, blocks, k + 1);
       for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
       {
-        count += picked(i) ? 1 : 0;
+        const bool pick = (CoordinateHash(xyz + 3 * ids[i]) >> 32) < below;
+        picked[i] = pick ? 1 : 0;
+        count += pick ? 1 : 0;
       }
       start[k + 1] = count;
     }
@@ -481,7 +485,7 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
       const Index end = BlockBegin(n, blocks, k + 1);
       for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
       {
-        if (picked(i))
+        if (picked[i])
         {
           std::copy_n(xyz + 3 * ids[i], 3, out);
           out += 3;
