@@ -24,66 +24,66 @@ std::vector<Index> FarthestPoints(
   const std::vector<double>& distance2, Index look, const Execution& execution)
 {
   const Index n = static_cast<Index>(distance2.size());
-  std::vector<double> finite;
-  finite.reserve(distance2.size());
-  for (double d : distance2)
-  {
-    if (std::isfinite(d))
-    {
-      finite.push_back(d);
-    }
-  }
-  look = std::min<Index>(look, static_cast<Index>(finite.size()));
   std::vector<Index> far;
-  if (look <= 0)
+  if (look <= 0 || n == 0)
   {
     return far;
   }
-  std::nth_element(finite.begin(), finite.begin() + (look - 1), finite.end(), std::greater<double>());
-  const double threshold = finite[static_cast<std::size_t>(look - 1)];
-  finite = std::vector<double>();
-  // Every point above the threshold (fewer than `look`), then the lowest
-  // slots at it.
   const Index blocks = std::max<Index>(1, std::min<Index>(64, n / (1 << 15)));
   auto blockBegin = [&](Index b) { return n / blocks * b + (n % blocks) * b / blocks; };
-  std::vector<std::vector<Index>> over(static_cast<std::size_t>(blocks));
-  std::vector<std::vector<Index>> at(static_cast<std::size_t>(blocks));
-  execution.Run(0, blocks, [&](Index first, Index last) {
-    for (Index b = first; b < last; ++b)
-    {
-      for (Index i = blockBegin(b); i < blockBegin(b + 1); ++i)
+  // Every point whose finite value is at least `threshold`, in slot order.
+  auto collect = [&](double threshold) {
+    std::vector<std::vector<Index>> part(static_cast<std::size_t>(blocks));
+    execution.Run(0, blocks, [&](Index first, Index last) {
+      for (Index b = first; b < last; ++b)
       {
-        if (distance2[i] > threshold && std::isfinite(distance2[i]))
+        for (Index i = blockBegin(b); i < blockBegin(b + 1); ++i)
         {
-          over[b].push_back(i);
-        }
-        else if (distance2[i] == threshold)
-        {
-          at[b].push_back(i);
+          if (distance2[i] >= threshold && std::isfinite(distance2[i]))
+          {
+            part[b].push_back(i);
+          }
         }
       }
-    }
-  });
-  far.reserve(static_cast<std::size_t>(look));
-  for (const auto& part : over)
-  {
-    far.insert(far.end(), part.begin(), part.end());
-  }
-  for (const auto& part : at)
-  {
-    for (Index i : part)
+    });
+    std::vector<Index> all;
+    for (const auto& p : part)
     {
-      if (static_cast<Index>(far.size()) >= look)
-      {
-        break;
-      }
-      far.push_back(i);
+      all.insert(all.end(), p.begin(), p.end());
+    }
+    return all;
+  };
+  // A threshold from every 16th value, below the value of rank look in
+  // that sample (with a margin): usually a little over `look` points pass;
+  // if fewer do, all finite points are taken.
+  std::vector<double> sample;
+  for (Index i = 0; i < n; i += 16)
+  {
+    if (std::isfinite(distance2[i]))
+    {
+      sample.push_back(distance2[i]);
     }
   }
-  std::sort(far.begin(), far.end(), [&](Index a, Index b) {
+  const auto rank = static_cast<std::size_t>(2 * look / 16 + 16);
+  std::vector<Index> pool;
+  if (rank < sample.size())
+  {
+    std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(rank), sample.end(),
+      std::greater<double>());
+    pool = collect(sample[rank]);
+  }
+  if (static_cast<Index>(pool.size()) < look)
+  {
+    pool = collect(-Infinity);
+  }
+  auto fartherFirst = [&](Index a, Index b) {
     return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
-  });
-  return far;
+  };
+  look = std::min<Index>(look, static_cast<Index>(pool.size()));
+  std::nth_element(pool.begin(), pool.begin() + (look - 1), pool.end(), fartherFirst);
+  pool.resize(static_cast<std::size_t>(look));
+  std::sort(pool.begin(), pool.end(), fartherFirst);
+  return pool;
 }
 
 Index CellOfSlot(const CellGrid& grid, Index slot)
@@ -106,30 +106,26 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     return 0;
   }
-  // Members of each sample (point slots), by counting sort.
-  std::vector<Index> start;
-  std::vector<Index> members;
-  GroupBy(
-    points, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, start, members,
-    execution);
   // Candidates: the free samples with the most points per unit of spread
-  // first (small clusters in dense areas), a few per move.
-  std::vector<double> radius(static_cast<std::size_t>(count), Infinity);
-  execution.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
+  // first (small clusters in dense areas), a few per move. The spread of a
+  // sample is the largest squared distance of its members (infinite for
+  // fixed samples and samples without members).
+  std::vector<double> radius(static_cast<std::size_t>(count), -1.0);
+  for (Index i = 0; i < points; ++i)
+  {
+    const Index s = assign[i];
+    if (s >= 0)
     {
-      if (samples.Fixed[s] || start[s + 1] == start[s])
-      {
-        continue;
-      }
-      double r = 0.0;
-      for (Index m = start[s]; m < start[s + 1]; ++m)
-      {
-        r = std::max(r, distance2[members[m]]);
-      }
-      radius[s] = r;
+      radius[s] = std::max(radius[s], distance2[i]);
     }
-  });
+  }
+  for (Index s = 0; s < count; ++s)
+  {
+    if (samples.Fixed[s] || radius[s] < 0.0)
+    {
+      radius[s] = Infinity;
+    }
+  }
   std::vector<Index> candidates(static_cast<std::size_t>(count));
   std::iota(candidates.begin(), candidates.end(), Index(0));
   const Index keep = std::min<Index>(count, 8 * maxMoves);
@@ -140,6 +136,18 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     candidates.pop_back();
   }
+  // Members (point slots) of the candidates only, by counting sort.
+  std::vector<Index> candidateOf(static_cast<std::size_t>(count), -1);
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+  {
+    candidateOf[candidates[k]] = static_cast<Index>(k);
+  }
+  std::vector<Index> start;
+  std::vector<Index> members;
+  GroupBy(
+    points, static_cast<Index>(candidates.size()),
+    [&](Index i) { return assign[i] >= 0 ? candidateOf[assign[i]] : Index(-1); },
+    [](Index i) { return i; }, start, members, execution);
   // Cost of removing candidate s, and who takes over its members.
   std::vector<Index> heirs;
   // Bounded work: a sample among more than 4 * LargeCellBudget ring samples
@@ -164,7 +172,8 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       return Infinity;
     }
-    for (Index m = start[s]; m < start[s + 1]; ++m)
+    const Index k = candidateOf[s];
+    for (Index m = start[k]; m < start[k + 1]; ++m)
     {
       const Index slot = members[m];
       const double* p = xyz + 3 * grid.Order[slot];
