@@ -162,20 +162,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   };
 
   // 1. Grid (given in distributed runs).
-  CellGrid original;
-  if (parameters.Grid)
-  {
-    original = BuildCellGrid(xyz, ids, *parameters.Grid, execution);
-  }
-  else
-  {
-    const Bounds bounds = ComputeBounds(xyz, ids, execution);
-    const double cellSize = parameters.CellSize;
-    original = (cellSize > 0.0 && std::isfinite(cellSize))
-      ? BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution)
-      : BuildAutomaticCellGrid(xyz, ids, bounds,
-          static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell), execution);
-  }
+  const CellGrid original = BuildRunGrid(xyz, ids, parameters, target, execution);
   if (abort(0.1))
   {
     return result;

@@ -284,6 +284,23 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   return CellShares(capacity, variation, parameters, exponent);
 }
 
+CellGrid BuildRunGrid(const double* xyz, const std::vector<Index>& ids,
+  const SimplifyParameters& parameters, Index target, const Execution& execution)
+{
+  if (parameters.Grid)
+  {
+    return BuildCellGrid(xyz, ids, *parameters.Grid, execution);
+  }
+  const Bounds bounds = ComputeBounds(xyz, ids, execution);
+  const double cellSize = parameters.CellSize;
+  if (cellSize > 0.0 && std::isfinite(cellSize))
+  {
+    return BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
+  }
+  const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+  return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution);
+}
+
 void SummarizeKeyPoints(SimplifyResult& result)
 {
   // Summed in sample order: deterministic.
@@ -320,26 +337,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 1. Hash the points into the grid.
-  CellGrid grid;
-  if (parameters.Grid)
-  {
-    grid = BuildCellGrid(xyz, ids, *parameters.Grid, execution);
-  }
-  else
-  {
-    const Bounds bounds = ComputeBounds(xyz, ids, execution);
-    const double cellSize = parameters.CellSize;
-    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
-    {
-      const double targetCells =
-        static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
-      grid = BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution);
-    }
-    else
-    {
-      grid = BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
-    }
-  }
+  const CellGrid grid = BuildRunGrid(xyz, ids, parameters, target, execution);
   if (execution.Report(0.1))
   {
     result.Aborted = true;

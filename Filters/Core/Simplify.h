@@ -128,6 +128,13 @@ VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>
   const CellGrid& grid, const SimplifyParameters& parameters, double exponent,
   std::vector<Index>& capacity);
 
+/// Step 1 of both modes, the grid: parameters.Grid when set (distributed
+/// runs), else cells of edge parameters.CellSize when it is positive and
+/// finite, else the automatic cell size for about target / SamplesPerCell
+/// non-empty cells (BuildAutomaticCellGrid).
+VTKASMFILTERS_EXPORT CellGrid BuildRunGrid(const double* xyz, const std::vector<Index>& ids,
+  const SimplifyParameters& parameters, Index target, const Execution& execution = {});
+
 /// Fills NumberOfKeyPoints, AKPE and MKPE of `result` from its key samples.
 VTKASMFILTERS_EXPORT void SummarizeKeyPoints(SimplifyResult& result);
 
