@@ -11,6 +11,7 @@
 #include "Core/FeatureSimplify.h"
 #include "Core/Grid.h"
 #include "Core/Simplify.h"
+#include "DistributedHelpers.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -56,32 +57,12 @@ void CheckSlabs(int crossCellIterations, int slabs)
   ASSERT_EQ(serial.Samples.size(), 4000u);
 
   // The global grid and budgets, as a distributed run computes them.
-  const asmcore::Bounds bounds = asmcore::ComputeBounds(cloud.data(), ids);
-  const asmcore::GridSpec spec = asmcore::GridSpec::Make(bounds, serial.CellSize);
-  const asmcore::CellGrid grid = asmcore::BuildCellGrid(cloud.data(), ids, spec);
-  std::vector<Index> capacity;
-  std::vector<double> variation;
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    capacity.push_back(grid.CellSizeOf(c));
-    variation.push_back(
-      asmcore::ComputeCellFrame(cloud.data(), grid.CellPoints(c), grid.CellSizeOf(c)).SurfaceVariation());
-  }
+  const asmtest::GlobalCells cells(cloud, ids, serial.CellSize);
+  const asmcore::GridSpec& spec = cells.Spec;
   const std::vector<Index> budget = asmcore::ApportionWithCoverage(
-    asmcore::CellShares(capacity, variation, p, p.BudgetExponent), capacity, 4000, p.CoverEveryCell);
-  std::map<std::uint64_t, Index> budgetOf;
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    budgetOf[grid.CellKey[c]] = budget[c];
-  }
-  double centroid[3] = { 0, 0, 0 };
-  for (Index id : ids)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      centroid[a] += cloud[3 * id + a] / static_cast<double>(ids.size());
-    }
-  }
+    asmcore::CellShares(cells.Capacity, cells.Variation, p, p.BudgetExponent), cells.Capacity, 4000, p.CoverEveryCell);
+  const std::map<std::uint64_t, Index> budgetOf = cells.ByKey(budget);
+  const double* centroid = cells.Centroid;
 
   // Slabs of x indices, each with its halo.
   const int halo = asmcore::InfluenceRingsOf(p) + 2;

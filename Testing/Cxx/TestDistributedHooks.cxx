@@ -8,6 +8,7 @@
 #include "Core/CellFrame.h"
 #include "Core/Grid.h"
 #include "Core/Simplify.h"
+#include "DistributedHelpers.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -45,32 +46,12 @@ void CheckSplit(asmcore::WeightMode weight)
 
   // The serial grid and budgets, computed as a distributed run does: cells
   // in key order, CellShares, ApportionBudget.
-  const asmcore::Bounds bounds = asmcore::ComputeBounds(cloud.data(), ids);
-  const asmcore::GridSpec spec = asmcore::GridSpec::Make(bounds, serial.CellSize);
-  const asmcore::CellGrid grid = asmcore::BuildCellGrid(cloud.data(), ids, spec);
-  std::vector<Index> capacity;
-  std::vector<double> variation;
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    capacity.push_back(grid.CellSizeOf(c));
-    variation.push_back(
-      asmcore::ComputeCellFrame(cloud.data(), grid.CellPoints(c), grid.CellSizeOf(c)).SurfaceVariation());
-  }
+  const asmtest::GlobalCells cells(cloud, ids, serial.CellSize);
+  const asmcore::GridSpec& spec = cells.Spec;
   const std::vector<Index> budget =
-    asmcore::ApportionBudget(asmcore::CellShares(capacity, variation, p), capacity, 701);
-  std::map<std::uint64_t, Index> budgetOf;
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    budgetOf[grid.CellKey[c]] = budget[c];
-  }
-  double centroid[3] = { 0, 0, 0 };
-  for (Index id : ids)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      centroid[a] += cloud[3 * id + a] / static_cast<double>(ids.size());
-    }
-  }
+    asmcore::ApportionBudget(asmcore::CellShares(cells.Capacity, cells.Variation, p), cells.Capacity, 701);
+  const std::map<std::uint64_t, Index> budgetOf = cells.ByKey(budget);
+  const double* centroid = cells.Centroid;
 
   // Three "processes": cells by x index modulo 3; each also gets the cells
   // of the next index as a halo (budget -1 there: halo).
