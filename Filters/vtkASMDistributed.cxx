@@ -2,6 +2,7 @@
 #include "vtkASMDistributed.h"
 
 #include "Core/Budget.h"
+#include "Core/CellSize.h"
 #include "Core/CellFrame.h"
 
 #include "vtkCommunicator.h"

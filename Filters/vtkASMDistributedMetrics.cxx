@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkASMDistributedMetrics.h"
 
+#include "Core/CellSize.h"
 #include "Core/Neighbors.h"
 
 #include "vtkNew.h"

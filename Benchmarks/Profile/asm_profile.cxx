@@ -22,6 +22,7 @@
  */
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
+#include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Neighbors.h"

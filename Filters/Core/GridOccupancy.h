@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * Internals of Grid.cxx (not installed, not for other files): the occupied
- * cells of a grid as a lock-free bitmap or a hash table, the division-free
- * cell coordinates, and fixed work blocks. Results never depend on how the
+ * Internals of Grid.cxx and CellSize.cxx (not installed, not for other
+ * files): the occupied cells of a grid as a lock-free bitmap or a hash
+ * table, the division-free cell coordinates, fixed work blocks, and the
+ * marks a grid is finished from. Results never depend on how the
  * loops are cut, so the grid is the same whatever the thread count.
  */
 #ifndef asm_core_GridOccupancy_h
@@ -305,6 +306,47 @@ inline void MarkCells(const double* xyz, const std::vector<Index>& ids, const Gr
   });
 }
 
+// The first half of BuildCellGrid on a bitmap: the occupied cells and each
+// point's linear cell number. A search for the cell size keeps the marks of
+// its last count, and the grid is finished from them when that count is the
+// answer.
+struct CellMarks
+{
+  GridSpec Spec;
+  OccupancyBitmap Bitmap;
+  std::vector<std::uint64_t> Cell; // per point: linear cell number
+  bool Valid = false;
+
+  // False (and nothing marked) when the grid is too large for a bitmap.
+  bool Mark(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec,
+    const Execution& execution)
+  {
+    this->Valid = false;
+    const Index n = static_cast<Index>(ids.size());
+    if (n == 0 || !this->Bitmap.Init(spec, n))
+    {
+      return false;
+    }
+    this->Spec = spec;
+    this->Cell.resize(static_cast<std::size_t>(n));
+    MarkCells(xyz, ids, spec, this->Bitmap, this->Cell.data(), execution);
+    this->Valid = true;
+    return true;
+  }
+  Index Occupied() const
+  {
+    Index count = 0;
+    for (Index w = 0; w < this->Bitmap.Words; ++w)
+    {
+      count += PopCount(this->Bitmap.Word(w));
+    }
+    return count;
+  }
+};
+
+// The grid from valid marks (which it consumes): the second half of
+// BuildCellGrid (Grid.cxx).
+CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const Execution& execution);
 } // namespace occupancy
 } // namespace asmcore
 

@@ -2,6 +2,7 @@
 #include "Metrics.h"
 
 #include "CellFrame.h"
+#include "CellSize.h"
 #include "Neighbors.h"
 
 #include <algorithm>

@@ -4,6 +4,7 @@
 #include "Budget.h"
 #include "CellFrame.h"
 #include "FeatureSimplify.h"
+#include "CellSize.h"
 #include "Grid.h"
 #include "KeyPoints.h"
 #include "Neighbors.h"

@@ -2,6 +2,7 @@
 // Unit tests of the ASM core (no VTK): grid, PCA frame, budgets, key points.
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
+#include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Simplify.h"

@@ -2,6 +2,7 @@
 // The fast paths of the core give the results of their plain definitions:
 // the grid (bitmap and hash paths, reciprocal keys, counting sort, parallel
 // cuts), the in-plane linking (dense bins) and the level-by-level kd-tree.
+#include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Lloyd.h"

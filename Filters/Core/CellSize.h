@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The automatic cell size (paper §3.5 step 1 leaves it open; ASM-spec.md):
+ * the cell edge for which about a target number of grid cells is non-empty,
+ * searched in log(cell size) with the measured occupancy, first on a
+ * subsample picked by the points' coordinates (so that serial and
+ * distributed runs pick the same points), then on all points.
+ */
+#ifndef asm_core_CellSize_h
+#define asm_core_CellSize_h
+
+#include "Grid.h"
+
+#include <functional>
+
+namespace asmcore
+{
+/// The cell edge for which about `targetCells` cells are non-empty. Searches
+/// in log(cell size) with the measured occupancy: first on CellSizeSubsample
+/// (about 32 points per target cell), then from there on all points, usually
+/// in one or two passes. When sparse cells (far outliers) make up a fifth of the
+/// count, searches again counting each cell by its share of a sample.
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids,
+  const Bounds& bounds, double targetCells, const Execution& execution = {});
+
+/// BuildCellGrid with the cell size of AutomaticCellSize, searched and built
+/// in one go (the grid of the search's last count is reused when it is the
+/// answer).
+VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(const double* xyz,
+  const std::vector<Index>& ids, const Bounds& bounds, double targetCells,
+  const Execution& execution = {});
+
+/// The same search with the occupancy counted by `countOccupied` (e.g. the
+/// distinct non-empty cells over all processes of a distributed run),
+/// starting from `start` (> 0; e.g. the search on CellSizeSubsample) or from
+/// the guess that the points sample a surface (0). Without the sparse-cell
+/// search of the overload above.
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targetCells,
+  bool empty, const std::function<double(const GridSpec&)>& countOccupied, double start = 0.0);
+
+/// The points the automatic cell size is first searched on (3 coordinates
+/// each): about one in max(4, totalPoints / targetCells / 32), picked by a
+/// hash of the point's coordinates, so that the same points are picked
+/// whatever the order or the partition of the cloud over processes; empty
+/// when totalPoints < 200000 (the search then runs on all points).
+VTKASMFILTERS_EXPORT std::vector<double> CellSizeSubsample(const double* xyz,
+  const std::vector<Index>& ids, double totalPoints, double targetCells,
+  const Execution& execution = {});
+} // namespace asmcore
+
+#endif
