@@ -179,6 +179,59 @@ void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], doub
     minId = std::min(minId, points[i].Id);
   }
 }
+// Partitions entries [begin, end) (Hoare) into those less than `pivot`
+// (first) and the others, and takes the bounds and smallest id of each part
+// as each entry is classified (once); returns where the second part begins.
+// A part may be empty (the caller then splits at the median).
+template <typename Entry, typename Less, typename Part>
+Index PartitionWithBounds(
+  Entry* points, Index begin, Index end, const Entry& pivot, const Less& less, Part& left, Part& right)
+{
+  double lo[2][3], hi[2][3]; // 0: left, 1: right (locals: kept in registers)
+  Index minId[2] = { std::numeric_limits<Index>::max(), std::numeric_limits<Index>::max() };
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[0][a] = lo[1][a] = std::numeric_limits<double>::infinity();
+    hi[0][a] = hi[1][a] = -std::numeric_limits<double>::infinity();
+  }
+  auto add = [&](int part, const Entry& e) {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[part][a] = std::min(lo[part][a], e.P[a]);
+      hi[part][a] = std::max(hi[part][a], e.P[a]);
+    }
+    minId[part] = std::min(minId[part], e.Id);
+  };
+  Index i = begin, j = end - 1;
+  for (;;)
+  {
+    while (i <= j && less(points[i], pivot))
+    {
+      add(0, points[i++]);
+    }
+    while (i <= j && !less(points[j], pivot))
+    {
+      add(1, points[j--]);
+    }
+    if (i >= j)
+    {
+      break;
+    }
+    std::swap(points[i], points[j]);
+    add(0, points[i++]);
+    add(1, points[j--]);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    left.Lo[a] = lo[0][a];
+    left.Hi[a] = hi[0][a];
+    right.Lo[a] = lo[1][a];
+    right.Hi[a] = hi[1][a];
+  }
+  left.MinId = minId[0];
+  right.MinId = minId[1];
+  return i;
+}
 } // namespace
 
 void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
@@ -278,24 +331,48 @@ void Neighbors::BuildTask(const Task& task, Built& built, Task children[2], bool
   {
     return;
   }
-  // Median split on (coordinate, id): the halves have equal sizes even when
-  // many points share the median coordinate.
-  const Index mid = begin + (end - begin) / 2;
-  std::nth_element(points + begin, points + mid, points + end,
-    [axis](const Entry& x, const Entry& y) {
-      return x.P[axis] < y.P[axis] || (x.P[axis] == y.P[axis] && x.Id < y.Id);
-    });
-  node.Axis = axis;
-  node.HighMin = points[mid].P[axis];
+  // Split on (coordinate, id), so that the halves are ordered even when many
+  // points share a coordinate: around the median of an evenly spaced sample
+  // of the range, in one partition pass that also takes the halves' bounds;
+  // when that leaves either half with fewer than 3/8 of the points, at the
+  // exact median (nth_element) instead. Queries are exact whatever the split.
+  auto less = [axis](const Entry& x, const Entry& y) {
+    return x.P[axis] < y.P[axis] || (x.P[axis] == y.P[axis] && x.Id < y.Id);
+  };
   Task& left = children[0];
   Task& right = children[1];
+  const Index n = end - begin;
+  Index mid = -1;
+  {
+    constexpr Index SampleSize = 63;
+    const Index m = std::min(n, SampleSize);
+    Entry sample[SampleSize];
+    for (Index k = 0; k < m; ++k)
+    {
+      sample[k] = points[begin + k * n / m];
+    }
+    std::nth_element(sample, sample + m / 2, sample + m, less);
+    const Entry pivot = sample[m / 2];
+    mid = PartitionWithBounds(points, begin, end, pivot, less, left, right);
+    if (8 * (mid - begin) < 3 * n || 8 * (end - mid) < 3 * n)
+    {
+      mid = -1;
+    }
+  }
+  if (mid < 0)
+  {
+    mid = begin + n / 2;
+    std::nth_element(points + begin, points + mid, points + end, less);
+    RangeBounds(points, begin, mid, left.Lo, left.Hi, left.MinId);
+    RangeBounds(points, mid, end, right.Lo, right.Hi, right.MinId);
+  }
+  node.Axis = axis;
+  node.HighMin = right.Lo[axis];
   left.Begin = begin;
   left.End = mid;
   right.Begin = mid;
   right.End = end;
   left.Depth = right.Depth = task.Depth + 1;
-  RangeBounds(points, begin, mid, left.Lo, left.Hi, left.MinId);
-  RangeBounds(points, mid, end, right.Lo, right.Hi, right.MinId);
   node.LowMax = left.Hi[axis];
   split = true;
 }

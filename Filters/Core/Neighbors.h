@@ -11,17 +11,21 @@
  * per-node allocation, and a leaf is scanned in a single sweep of memory.
  * The tree does not refer to the caller's arrays after Build().
  *
- * Splits are at the median (std::nth_element on (coordinate, id)) along the
- * axis of largest extent, so each split halves its range whatever the data:
- * the depth is at most ceil(log2(N / LeafSize)) + 1. A range whose points
+ * Splits are on (coordinate, id) along the axis of largest extent, around
+ * the median of 63 evenly spaced entries of the range, in one partition pass
+ * that also takes the two halves' bounds; a split that would leave either
+ * half with less than 3/8 of the range is made at the exact median
+ * (std::nth_element) instead. So each split keeps at most 5/8 of its range
+ * whatever the data: the depth is at most log(N / LeafSize) / log(8/5) + 1
+ * (and MaxDepth). The answers do not depend on where the splits fall. A range whose points
  * all coincide becomes one leaf, sorted by id, whatever its size: a cloud of
  * a million identical points is a single leaf, and a k-nearest query on it
  * reads k + 1 of them (all share one distance and the scan stops at the
  * first point that cannot enter the result).
  *
  * Complexity (N points, k neighbours, m points reported):
- *  - Build: O(N log N) time (a linear-time nth_element and one bounds pass
- *    per level; the nodes of a level are built in parallel); memory: 32 N bytes of points + fewer than 4 N / LeafSize
+ *  - Build: O(N log N) time (one partition pass per level, which takes the
+ *    children's bounds too; the nodes of a level are built in parallel); memory: 32 N bytes of points + fewer than 4 N / LeafSize
  *    nodes of 56 bytes (under 39 bytes per point in all).
  *  - KNearest / Nearest: O(log N + k log k) expected for points sampled
  *    from a surface or volume; O(N log N) when k >= N (all points, sorted).
