@@ -6,6 +6,7 @@
 #include "CellNeighbors.h"
 #include "FeatureKeyPoints.h"
 #include "Grid.h"
+#include "GroupBy.h"
 #include "HoleFilling.h"
 #include "Lloyd.h"
 #include "Neighbors.h"
@@ -336,22 +337,11 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     }
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
-  std::vector<Index> memberStart(static_cast<std::size_t>(count) + 1, 0);
-  for (Index s = 0; s < count; ++s)
-  {
-    memberStart[s + 1] = memberStart[s] + clusterSize[s];
-  }
-  result.Members.assign(static_cast<std::size_t>(memberStart[count]), -1);
-  {
-    std::vector<Index> fill(memberStart.begin(), memberStart.end() - 1);
-    for (std::size_t i = 0; i < assign.size(); ++i)
-    {
-      if (assign[i] >= 0)
-      {
-        result.Members[fill[assign[i]]++] = original.Order[i];
-      }
-    }
-  }
+  // The members of each sample, in slot order.
+  std::vector<Index> memberStart;
+  GroupBy(
+    total, count, [&](Index i) { return assign[i]; }, [&](Index i) { return original.Order[i]; },
+    memberStart, result.Members, execution);
   if (abort(0.9))
   {
     return result;
