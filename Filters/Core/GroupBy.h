@@ -31,22 +31,25 @@ void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Inde
   {
     --blocks; // bounded scratch for the per-block counts
   }
-  std::vector<Index> offset(static_cast<std::size_t>(blocks * keys), 0);
-  execution.Run(0, blocks, [&](Index first, Index last) {
-    for (Index b = first; b < last; ++b)
-    {
-      Index* count = offset.data() + b * keys;
-      const Index end = blockBegin(blocks, b + 1);
-      for (Index i = blockBegin(blocks, b); i < end; ++i)
+  // visit(block, i, key) for every item with a key, block by block.
+  auto eachItem = [&](auto&& visit) {
+    execution.Run(0, blocks, [&](Index first, Index last) {
+      for (Index b = first; b < last; ++b)
       {
-        const Index k = key(i);
-        if (k >= 0)
+        const Index end = blockBegin(blocks, b + 1);
+        for (Index i = blockBegin(blocks, b); i < end; ++i)
         {
-          ++count[k];
+          const Index k = key(i);
+          if (k >= 0)
+          {
+            visit(b, i, k);
+          }
         }
       }
-    }
-  });
+    });
+  };
+  std::vector<Index> offset(static_cast<std::size_t>(blocks * keys), 0);
+  eachItem([&](Index b, Index, Index k) { ++offset[b * keys + k]; });
   start.resize(static_cast<std::size_t>(keys) + 1);
   Index running = 0;
   for (Index k = 0; k < keys; ++k)
@@ -61,21 +64,7 @@ void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Inde
   }
   start[keys] = running;
   out.resize(static_cast<std::size_t>(running));
-  execution.Run(0, blocks, [&](Index first, Index last) {
-    for (Index b = first; b < last; ++b)
-    {
-      Index* next = offset.data() + b * keys;
-      const Index end = blockBegin(blocks, b + 1);
-      for (Index i = blockBegin(blocks, b); i < end; ++i)
-      {
-        const Index k = key(i);
-        if (k >= 0)
-        {
-          out[static_cast<std::size_t>(next[k]++)] = value(i);
-        }
-      }
-    }
-  });
+  eachItem([&](Index b, Index i, Index k) { out[static_cast<std::size_t>(offset[b * keys + k]++)] = value(i); });
 }
 } // namespace asmcore
 
