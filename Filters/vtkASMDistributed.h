@@ -30,13 +30,17 @@
  *    serial path gives the same points as this one (the bunny in input,
  *    reversed or shuffled order: none moves); what remains order-dependent
  *    is exact ties between distinct points (broken by position) and
- *    floating-point summation order. A one-process run still takes the
- *    serial path unless AlwaysDistribute is on (ParaView built with MPI has
- *    an MPI controller with one process even in the built-in session, so
- *    one process cannot tell "mpiexec -n 1" from a desktop session), and
- *    the serial path runs FillHoles (feature mode), which distributed runs
- *    do not (7): with FillHoles on, only AlwaysDistribute makes K = 1 match
- *    K = 2, 3.
+ *    floating-point summation order. A one-process run started by mpiexec
+ *    takes this path too (LaunchedByMPIRunner: ParaView built with MPI has
+ *    a one-process MPI controller even in the built-in session, so the
+ *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
+ *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
+ *    A session not started by mpiexec takes the serial path unless
+ *    AlwaysDistribute is on; the serial path runs FillHoles (feature mode),
+ *    which distributed runs do not (7), so it matches them only with
+ *    FillHoles off. The automatic cell size is searched first on points
+ *    picked by a hash of their coordinates (CellSizeSubsample), the same
+ *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
  *    variation) are gathered on process 0, which computes the shares and
  *    apportions N_s exactly as the serial code does (cells in key order) by
