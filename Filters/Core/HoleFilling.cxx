@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace asmcore
 {
@@ -76,14 +77,24 @@ std::vector<Index> FarthestPoints(
   {
     pool = collect(-Infinity);
   }
-  auto fartherFirst = [&](Index a, Index b) {
-    return distance2[a] > distance2[b] || (distance2[a] == distance2[b] && a < b);
+  // Ranked on (value, slot) pairs: contiguous reads, not distance2[slot].
+  std::vector<std::pair<double, Index>> ranked(pool.size());
+  execution.Run(0, static_cast<Index>(pool.size()), [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k)
+    {
+      ranked[k] = { distance2[pool[k]], pool[k] };
+    }
+  });
+  auto fartherFirst = [](const std::pair<double, Index>& a, const std::pair<double, Index>& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
   };
-  look = std::min<Index>(look, static_cast<Index>(pool.size()));
-  std::nth_element(pool.begin(), pool.begin() + (look - 1), pool.end(), fartherFirst);
-  pool.resize(static_cast<std::size_t>(look));
-  std::sort(pool.begin(), pool.end(), fartherFirst);
-  return pool;
+  look = std::min<Index>(look, static_cast<Index>(ranked.size()));
+  std::nth_element(ranked.begin(), ranked.begin() + (look - 1), ranked.end(), fartherFirst);
+  ranked.resize(static_cast<std::size_t>(look));
+  std::sort(ranked.begin(), ranked.end(), fartherFirst);
+  far.resize(ranked.size());
+  std::transform(ranked.begin(), ranked.end(), far.begin(), [](const std::pair<double, Index>& r) { return r.second; });
+  return far;
 }
 
 Index CellOfSlot(const CellGrid& grid, Index slot)
@@ -130,8 +141,12 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   std::iota(candidates.begin(), candidates.end(), Index(0));
   const Index keep = std::min<Index>(count, 8 * maxMoves);
   auto smaller = [&](Index a, Index b) { return radius[a] < radius[b] || (radius[a] == radius[b] && a < b); };
-  std::partial_sort(candidates.begin(), candidates.begin() + keep, candidates.end(), smaller);
+  if (keep < count)
+  {
+    std::nth_element(candidates.begin(), candidates.begin() + keep, candidates.end(), smaller);
+  }
   candidates.resize(static_cast<std::size_t>(keep));
+  std::sort(candidates.begin(), candidates.end(), smaller);
   while (!candidates.empty() && !std::isfinite(radius[candidates.back()]))
   {
     candidates.pop_back();
