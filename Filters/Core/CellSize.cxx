@@ -218,43 +218,21 @@ double SearchIgnoringSparseCells(const double* xyz, const std::vector<Index>& id
 double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
-  const double maxExtent = bounds.MaxExtent();
-  if (ids.empty() || !(maxExtent > 0.0))
-  {
-    return GridSpec::Make(bounds, 0.0).CellSize; // one cell holds everything
-  }
-  // One cell for the whole cloud: slightly larger than the largest extent.
-  if (targetCells <= 1.0)
-  {
-    return maxExtent * (1.0 + 1e-9);
-  }
-  const double start = SubsampleStart(xyz, ids, bounds, targetCells, execution);
-  double lastH = -1.0, lastCount = 0.0;
-  const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
-    lastH = spec.CellSize;
-    lastCount = static_cast<double>(CountOccupiedCells(xyz, ids, spec, execution));
-    return lastCount;
-  }, start);
-  const GridSpec found = GridSpec::Make(bounds, h);
-  const double raw = found.CellSize == lastH
-    ? lastCount
-    : static_cast<double>(CountOccupiedCells(xyz, ids, found, execution));
-  const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
-  if (!SparseCellsDominate(EffectiveOccupiedCells(xyz, ids, found, minPoints), raw))
-  {
-    return h;
-  }
-  return SearchIgnoringSparseCells(xyz, ids, bounds, targetCells);
+  return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution).Spec.CellSize;
 }
 
 CellGrid BuildAutomaticCellGrid(const double* xyz, const std::vector<Index>& ids,
   const Bounds& bounds, double targetCells, const Execution& execution)
 {
   const double maxExtent = bounds.MaxExtent();
-  if (ids.empty() || !(maxExtent > 0.0) || targetCells <= 1.0)
+  if (ids.empty() || !(maxExtent > 0.0))
   {
-    return BuildCellGrid(
-      xyz, ids, GridSpec::Make(bounds, AutomaticCellSize(xyz, ids, bounds, targetCells)), execution);
+    return BuildCellGrid(xyz, ids, GridSpec::Make(bounds, 0.0), execution); // one cell holds everything
+  }
+  if (targetCells <= 1.0)
+  {
+    // One cell for the whole cloud: slightly larger than the largest extent.
+    return BuildCellGrid(xyz, ids, GridSpec::Make(bounds, maxExtent * (1.0 + 1e-9)), execution);
   }
   // The full search's counts keep their marks: the last count is usually
   // the answer, and the grid is then finished from its marks.
