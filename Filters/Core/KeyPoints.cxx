@@ -334,31 +334,50 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
 
 void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out)
 {
+  // The splits work on a copy of the points' (u0, u1) and index, so that
+  // each comparison reads adjacent memory; the clusters are written back
+  // into [first, last) at the end, in the order they are completed.
+  struct Entry
+  {
+    double U[2];
+    Index Id;
+  };
   struct Task
   {
-    Index* First;
-    Index* Last;
+    Index Begin;
+    Index End;
     Index K;
   };
-  std::vector<Task> stack = { { first, last, k } };
+  thread_local std::vector<Entry> entries; // reused by the cells a thread processes
+  thread_local std::vector<Task> stack;
+  thread_local std::vector<std::pair<Index, Index>> done;
+  const Index count = last - first;
+  entries.resize(static_cast<std::size_t>(count));
+  for (Index i = 0; i < count; ++i)
+  {
+    const Eigen::Vector3d& p = q[first[i]];
+    entries[i] = Entry{ { p[0], p[1] }, first[i] };
+  }
+  stack.assign(1, Task{ 0, count, k });
+  done.clear();
   while (!stack.empty())
   {
     const Task t = stack.back();
     stack.pop_back();
-    const Index n = t.Last - t.First;
+    const Index n = t.End - t.Begin;
     if (t.K <= 1 || n <= 1)
     {
-      out.Add(t.First, t.Last);
+      done.emplace_back(t.Begin, t.End);
       continue;
     }
-    double lo[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
-    double hi[2] = { -lo[0], -lo[1] };
-    for (const Index* it = t.First; it != t.Last; ++it)
+    Entry* const e = entries.data() + t.Begin;
+    double lo[2] = { e[0].U[0], e[0].U[1] }, hi[2] = { e[0].U[0], e[0].U[1] };
+    for (Index i = 1; i < n; ++i)
     {
       for (int a = 0; a < 2; ++a)
       {
-        lo[a] = std::min(lo[a], q[*it][a]);
-        hi[a] = std::max(hi[a], q[*it][a]);
+        lo[a] = std::min(lo[a], e[i].U[a]);
+        hi[a] = std::max(hi[a], e[i].U[a]);
       }
     }
     const int axis = (hi[1] - lo[1]) > (hi[0] - lo[0]) ? 1 : 0;
@@ -368,12 +387,20 @@ void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clus
     // as many points as samples it must produce.
     Index nLeft = static_cast<Index>(std::llround(static_cast<double>(n) * kLeft / t.K));
     nLeft = std::max(kLeft, std::min(n - kRight, nLeft));
-    std::nth_element(t.First, t.First + nLeft, t.Last, [&](Index a, Index b) {
-      return q[a][axis] < q[b][axis] || (q[a][axis] == q[b][axis] && a < b);
+    std::nth_element(e, e + nLeft, e + n, [axis](const Entry& x, const Entry& y) {
+      return x.U[axis] < y.U[axis] || (x.U[axis] == y.U[axis] && x.Id < y.Id);
     });
     // Left half first (depth first): clusters come out ordered along the split.
-    stack.push_back({ t.First + nLeft, t.Last, kRight });
-    stack.push_back({ t.First, t.First + nLeft, kLeft });
+    stack.push_back({ t.Begin + nLeft, t.End, kRight });
+    stack.push_back({ t.Begin, t.Begin + nLeft, kLeft });
+  }
+  for (Index i = 0; i < count; ++i)
+  {
+    first[i] = entries[i].Id;
+  }
+  for (const auto& range : done)
+  {
+    out.Add(first + range.first, first + range.second);
   }
 }
 
