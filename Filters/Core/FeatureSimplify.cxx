@@ -398,9 +398,14 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       {
         nearest = original.CellPoints(info[s].Owner)[0]; // no member could be found
       }
-      out.Representative = nearest;
       const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
         !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
+      // A key sample placed on its extreme point stands for that point, even
+      // when the point joined another sample's cluster (a tie with a sample
+      // at the same position): its position is exactly that input point.
+      out.Representative = samples.Fixed[s] && parameters.ExtremeKeyPoints && info[s].KeyPoint >= 0
+        ? original.Order[info[s].KeyPoint]
+        : nearest;
       // A free sample that is not snapped is its final cluster's centroid.
       const bool centroid = !snap && !samples.Fixed[s] && clusterSize[s] > 0;
       for (int a = 0; a < 3; ++a)
