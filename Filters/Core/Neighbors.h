@@ -11,22 +11,36 @@
  * per-node allocation, and a leaf is scanned in a single sweep of memory.
  * The tree does not refer to the caller's arrays after Build().
  *
- * Splits are on (coordinate, id) along the axis of largest extent, around
- * the median of 63 evenly spaced entries of the range, in one partition pass
- * that also takes the two halves' bounds; a split that would leave either
- * half with less than 3/8 of the range is made at the exact median
- * (std::nth_element) instead. So each split keeps at most 5/8 of its range
- * whatever the data: the depth is at most log(N / LeafSize) / log(8/5) + 1
- * (and MaxDepth). The answers do not depend on where the splits fall. A range whose points
+ * Build: the points are first grouped (a parallel stable counting sort) into
+ * the cells of a grid of up to 4096 buckets over the cloud's box, made as if
+ * the longest side were halved again and again, so that the cells nest as
+ * binary midpoint splits and a Morton order of the cells lists every split's
+ * halves as contiguous ranges: the top levels of the tree in one pass over
+ * memory. Each bucket's subtree is then built depth first by one thread
+ * while its points are in cache, the same way with grids of up to 256
+ * buckets (one counting pass that also takes the buckets' bounds, then the
+ * points regrouped through a spare array, or in place for ranges of more
+ * than SpareSize points), down to leaves of at most LeafSize points. A split
+ * that would keep more than 3/4 of a range in one bucket (clustered data),
+ * or a box too thin to divide, is made at the median instead: along the
+ * axis of largest extent, on (coordinate, id), around the median of 63
+ * evenly spaced entries in one partition pass (at the exact median,
+ * std::nth_element, when that leaves either half with less than 3/8). So a
+ * level keeps at most 3/4 of a range whatever the data, and the depth is at
+ * most log(N / LeafSize) / log(4/3) + 1 grids (and MaxDepth). The answers
+ * do not depend on where the splits fall. A range whose points
  * all coincide becomes one leaf, sorted by id, whatever its size: a cloud of
  * a million identical points is a single leaf, and a k-nearest query on it
  * reads k + 1 of them (all share one distance and the scan stops at the
  * first point that cannot enter the result).
  *
  * Complexity (N points, k neighbours, m points reported):
- *  - Build: O(N log N) time (one partition pass per level, which takes the
- *    children's bounds too; the nodes of a level are built in parallel); memory: 32 N bytes of points + fewer than 4 N / LeafSize
- *    nodes of 56 bytes (under 39 bytes per point in all).
+ *  - Build: O(N log N) time (about log_256(N / LeafSize) + 1 counting passes
+ *    per point, all but the first in cache; the buckets' subtrees are built
+ *    in parallel; the tree is the same whatever the thread count). Memory:
+ *    32 N bytes of points + about N / 10 nodes of 56 bytes (under 40 bytes
+ *    per point in all), and while building, a spare array of at most
+ *    SpareSize points per thread.
  *  - KNearest / Nearest: O(log N + k log k) expected for points sampled
  *    from a surface or volume; O(N log N) when k >= N (all points, sorted).
  *  - Radius: O(log N + m log m) expected.
@@ -58,12 +72,15 @@ struct VTKASMFILTERS_EXPORT NearestPoint
 class VTKASMFILTERS_EXPORT Neighbors
 {
 public:
-  /// Most points in a leaf (ranges of coincident points excepted); leaves
-  /// hold LeafSize / 2 to LeafSize points. Of 12 to 64, 32 answered k = 20
-  /// queries fastest (and builds faster than smaller leaves).
+  /// Most points in a leaf (ranges of coincident points excepted, and
+  /// ranges at MaxDepth); a grid split leaves 1 to LeafSize points per leaf.
   static constexpr Index LeafSize = 32;
-  /// Depth bound, a safeguard: median splits reach it only beyond 2^52 points.
-  static constexpr int MaxDepth = 48;
+  /// Depth bound in splits (each a grid of buckets or a median split), a
+  /// safeguard: splits that keep at most 3/4 of a range reach it only
+  /// beyond 2^44 points; a range at this depth is one leaf.
+  static constexpr int MaxDepth = 96;
+  /// Ranges of at most this many points are split through a spare array.
+  static constexpr Index SpareSize = Index(1) << 16;
 
   /// An empty tree: every query returns nothing.
   Neighbors() = default;
@@ -106,9 +123,10 @@ private:
     double P[3];
     Index Id;
   };
-  /// A node: a contiguous range of Points. Inner nodes split it at
-  /// [Begin, Begin + (End - Begin) / 2) | [..., End) along Axis; the left
-  /// child is the next node, the right child is node Right.
+  /// A node: a contiguous range of Points. Inner nodes split it in two
+  /// contiguous parts along Axis, every left coordinate <= LowMax and every
+  /// right one >= HighMin; the left child is the next node, the right child
+  /// is node Right.
   struct Node
   {
     Index Begin = 0;
@@ -122,9 +140,18 @@ private:
   };
 
   struct Task;
-  struct Built;
-  void BuildTask(const Task& task, Built& built, Task children[2], bool& split);
-  Index EmitDepthFirst(const std::vector<Built>& built, Index b);
+  struct Piece;
+  struct Scratch;
+  void BuildTask(const Task& task, Piece& piece, Scratch& scratch);
+  void SplitNodes(const Task& task, const Scratch& scratch, Piece& piece);
+  void MedianSplit(const Task& task, Piece& piece);
+  static bool Splits(const Task& task);
+  Node Leaf(const Task& task);
+  int AddChild(const Task& task, Index begin, Index end, const double lo[3], const double hi[3],
+    Index minId, Piece& piece);
+  void BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& scratch);
+  template <typename Pending>
+  Index Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending);
   template <typename Result>
   void Search(const double p[3], Result& result) const;
   template <typename Result>

@@ -303,6 +303,110 @@ TEST(Neighbors, MillionIdenticalPoints)
   EXPECT_EQ(std::vector<Index>({ 0, 1, 2, 3, 4 }), ids);
 }
 
+// Layouts that take the build off its common path (a grid of buckets that
+// leaves about LeafSize points each): most points in a tiny cluster (the
+// root splits at the median, then ranges too large for the spare array are
+// permuted in place), points at exponentially shrinking spacings (a split
+// after split peels few points: depth), flat and thin boxes, coordinates
+// one ulp apart, a box a few denormals wide (too thin for a grid). Every answer must still be exact.
+TEST(Neighbors, AdversarialLayoutsMatchBruteForce)
+{
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<std::pair<std::string, Cloud>> layouts;
+  {
+    Cloud c; // 200 k points within 1e-6 of the origin, 2 k spread over [0, 10]^3
+    for (int i = 0; i < 200000; ++i)
+    {
+      asmtest::Add(c, 1e-6 * u(rng), 1e-6 * u(rng), 1e-6 * u(rng));
+    }
+    for (int i = 0; i < 2000; ++i)
+    {
+      asmtest::Add(c, 10 * u(rng), 10 * u(rng), 10 * u(rng));
+    }
+    layouts.emplace_back("cluster", c);
+  }
+  {
+    Cloud c; // x = 2^-i for i < 1000 (down to 2^-999), three points each
+    for (int i = 0; i < 1000; ++i)
+    {
+      for (int copy = 0; copy < 3; ++copy)
+      {
+        asmtest::Add(c, std::ldexp(1.0, -i), copy, 0.0);
+      }
+    }
+    layouts.emplace_back("exponential", c);
+  }
+  {
+    Cloud c; // a plane, a line and a thin slab, overlapping
+    for (int i = 0; i < 20000; ++i)
+    {
+      asmtest::Add(c, u(rng), u(rng), 0.5);
+      asmtest::Add(c, u(rng), 0.5, 0.5);
+      asmtest::Add(c, u(rng), u(rng), 0.5 + 1e-12 * u(rng));
+    }
+    layouts.emplace_back("flat", c);
+  }
+  {
+    Cloud c; // coordinates one ulp apart, in piles
+    const double x = 1e8, y = std::nextafter(x, 2e8);
+    for (int i = 0; i < 5000; ++i)
+    {
+      asmtest::Add(c, i % 2 ? x : y, i % 3 ? x : y, i % 5 ? x : y);
+    }
+    layouts.emplace_back("ulp", c);
+  }
+  {
+    Cloud c; // a box too thin to divide into cells: 0 and the smallest denormal
+    const double tiny = std::numeric_limits<double>::denorm_min();
+    for (int i = 0; i < 3000; ++i)
+    {
+      asmtest::Add(c, i % 2 ? 0.0 : tiny, i % 3 ? 0.0 : tiny, i % 7 ? 0.0 : 2 * tiny);
+    }
+    layouts.emplace_back("denormal", c);
+  }
+  std::vector<Index> ids;
+  std::vector<double> d;
+  for (const auto& [name, c] : layouts)
+  {
+    std::vector<Index> all(c.size() / 3);
+    std::iota(all.begin(), all.end(), Index(0));
+    std::shuffle(all.begin(), all.end(), rng);
+    const asmcore::Neighbors tree(c.data(), all);
+    ASSERT_EQ(static_cast<Index>(all.size()), tree.Size()) << name;
+    std::vector<std::array<double, 3>> queries;
+    for (int i = 0; i < 12; ++i)
+    {
+      const double* p = c.data() + 3 * all[static_cast<std::size_t>(i) * 997 % all.size()];
+      queries.push_back({ p[0], p[1], p[2] });
+      queries.push_back({ p[0] + 1e-7 * u(rng), p[1] - 1e-7 * u(rng), p[2] });
+    }
+    queries.push_back({ 5.0, 5.0, 5.0 });
+    queries.push_back({ -1.0, 0.3, 2.0 });
+    for (const auto& q : queries)
+    {
+      const Ranked expected = BruteForce(c, all, q.data(), 100);
+      for (int k : { 1, 20, 100 })
+      {
+        tree.KNearest(q.data(), k, ids, d);
+        ExpectSame(Ranked(expected.begin(), expected.begin() + k), ids, d,
+          name + " k=" + std::to_string(k));
+      }
+      const double r = std::sqrt(expected[19].first);
+      tree.Radius(q.data(), r, ids, d);
+      Ranked within;
+      for (const auto& e : BruteForce(c, all, q.data()))
+      {
+        if (e.first <= r * r)
+        {
+          within.push_back(e);
+        }
+      }
+      ExpectSame(within, ids, d, name + " radius");
+    }
+  }
+}
+
 TEST(Neighbors, ConcurrentQueriesAgree)
 {
   const TestCloud t = MakeCloud(20000, 100, false, 21);
