@@ -45,9 +45,11 @@ set(ASM_FILTERS_PRIVATE
   vtkASMDistributedMetrics
 )
 # Private sources declared in another private header (paths relative to
-# Filters/): vtkASMDistributedFeature.cxx implements part of vtkASMDistributed.h.
+# Filters/): vtkASMDistributedFeature.cxx implements part of vtkASMDistributed.h,
+# Core/NeighborsBuild.cxx the build of Core/Neighbors.h's tree.
 set(ASM_FILTERS_EXTRA_SOURCES
   vtkASMDistributedFeature.cxx
+  Core/NeighborsBuild.cxx
 )
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS

@@ -1,0 +1,659 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The build of the kd-tree of Neighbors.h (the queries are in Neighbors.cxx).
+#include "Neighbors.h"
+
+#include "GroupBy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+namespace asmcore
+{
+Neighbors::Neighbors(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+{
+  this->Build(xyz, ids, execution);
+}
+
+/// A range of points waiting to become a node, with its bounds.
+struct Neighbors::Task
+{
+  Index Begin = 0;
+  Index End = 0;
+  int Depth = 0;
+  double Lo[3] = { 0, 0, 0 };
+  double Hi[3] = { 0, 0, 0 };
+  Index MinId = 0;
+};
+
+/// What one task makes: a small binary subtree (node 0 is the task's own
+/// node; children are local indices) whose leaves are either leaves of the
+/// tree or ranges left to split further (Pending >= 0: the index of their
+/// task in Children).
+struct Neighbors::Piece
+{
+  struct Local
+  {
+    Node Value;
+    int Left = -1;
+    int Right = -1;
+    int Pending = -1;
+  };
+  std::vector<Local> Nodes;
+  std::vector<Task> Children;
+};
+
+namespace
+{
+// Bounds and smallest id of entries [begin, end) (not empty), into lo, hi.
+template <typename Entry>
+void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], double hi[3], Index& minId)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = hi[a] = points[begin].P[a];
+  }
+  minId = points[begin].Id;
+  for (Index i = begin + 1; i < end; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], points[i].P[a]);
+      hi[a] = std::max(hi[a], points[i].P[a]);
+    }
+    minId = std::min(minId, points[i].Id);
+  }
+}
+// Partitions entries [begin, end) (Hoare) into those less than `pivot`
+// (first) and the others, and takes the bounds and smallest id of each part
+// as each entry is classified (once); returns where the second part begins.
+// A part may be empty (the caller then splits at the median).
+template <typename Entry, typename Less, typename Part>
+Index PartitionWithBounds(
+  Entry* points, Index begin, Index end, const Entry& pivot, const Less& less, Part& left, Part& right)
+{
+  double lo[2][3], hi[2][3]; // 0: left, 1: right (locals: kept in registers)
+  Index minId[2] = { std::numeric_limits<Index>::max(), std::numeric_limits<Index>::max() };
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[0][a] = lo[1][a] = std::numeric_limits<double>::infinity();
+    hi[0][a] = hi[1][a] = -std::numeric_limits<double>::infinity();
+  }
+  auto add = [&](int part, const Entry& e) {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[part][a] = std::min(lo[part][a], e.P[a]);
+      hi[part][a] = std::max(hi[part][a], e.P[a]);
+    }
+    minId[part] = std::min(minId[part], e.Id);
+  };
+  Index i = begin, j = end - 1;
+  for (;;)
+  {
+    while (i <= j && less(points[i], pivot))
+    {
+      add(0, points[i++]);
+    }
+    while (i <= j && !less(points[j], pivot))
+    {
+      add(1, points[j--]);
+    }
+    if (i >= j)
+    {
+      break;
+    }
+    std::swap(points[i], points[j]);
+    add(0, points[i++]);
+    add(1, points[j--]);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    left.Lo[a] = lo[0][a];
+    left.Hi[a] = hi[0][a];
+    right.Lo[a] = lo[1][a];
+    right.Hi[a] = hi[1][a];
+  }
+  left.MinId = minId[0];
+  right.MinId = minId[1];
+  return i;
+}
+
+// A spatial split of a box into 2^Used buckets: a grid whose cells are
+// what halving the longest side Used times gives, so that the buckets nest
+// as binary midpoint splits and listing the cells by their interleaved
+// (Morton) index lists every split's halves as contiguous ranges. Bit t of
+// a bucket index (t = 0 the most significant) splits along Sequence[t].
+struct SplitPlan
+{
+  static constexpr int MostBits = 12;
+  int Used = 0;
+  int Bits[3] = { 0, 0, 0 };
+  int Sequence[MostBits] = {};
+  double Lo[3] = { 0, 0, 0 };
+  double Scale[3] = { 0, 0, 0 };
+  double Top[3] = { 0, 0, 0 };
+  std::vector<int> Spread[3]; // cell index along an axis -> its bits of the bucket index
+
+  /// A plan of about `n / LeafSize` (at most 2^maxBits) buckets over the
+  /// box [lo, hi] (not a point); false if the box is too thin to divide.
+  bool Make(const double lo[3], const double hi[3], Index n, Index leafSize, int maxBits)
+  {
+    double side[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      side[a] = hi[a] - lo[a];
+      this->Lo[a] = lo[a];
+      this->Bits[a] = 0;
+    }
+    int want = 1;
+    while (want < maxBits && (leafSize << (want + 1)) <= n)
+    {
+      ++want;
+    }
+    for (this->Used = 0; this->Used < want; ++this->Used)
+    {
+      int longest = 0;
+      for (int a = 1; a < 3; ++a)
+      {
+        longest = side[a] > side[longest] ? a : longest;
+      }
+      this->Sequence[this->Used] = longest;
+      ++this->Bits[longest];
+      side[longest] *= 0.5;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const int cells = 1 << this->Bits[a];
+      this->Top[a] = static_cast<double>(cells - 1);
+      this->Scale[a] = this->Bits[a] > 0 ? static_cast<double>(cells) / (hi[a] - lo[a]) : 0.0;
+      if (!std::isfinite(this->Scale[a]))
+      {
+        return false;
+      }
+      this->Spread[a].assign(static_cast<std::size_t>(cells), 0);
+      for (int t = 0, k = 0; t < this->Used; ++t)
+      {
+        if (this->Sequence[t] == a)
+        {
+          for (int c = 0; c < cells; ++c)
+          {
+            this->Spread[a][c] |= ((c >> (this->Bits[a] - 1 - k)) & 1) << (this->Used - 1 - t);
+          }
+          ++k;
+        }
+      }
+    }
+    return true;
+  }
+  int Buckets() const { return 1 << this->Used; }
+  /// The bucket of p (inside the box): the cell index grows with each
+  /// coordinate, so a split's low half lies strictly below its high half.
+  int BucketOf(const double p[3]) const
+  {
+    int b = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double cell = std::min(this->Top[a], (p[a] - this->Lo[a]) * this->Scale[a]);
+      b |= this->Spread[a][static_cast<std::size_t>(cell)];
+    }
+    return b;
+  }
+};
+
+// The ranges, bounds and smallest ids of the buckets of a split.
+struct BucketSet
+{
+  std::vector<Index> Start; // bucket b: entries [Start[b], Start[b + 1])
+  std::vector<double> Lo, Hi; // 3 per bucket; meaningful for non-empty buckets
+  std::vector<Index> MinId;
+  void Reset(int buckets)
+  {
+    const auto n = static_cast<std::size_t>(buckets);
+    this->Start.assign(n + 1, 0);
+    this->Lo.assign(3 * n, std::numeric_limits<double>::infinity());
+    this->Hi.assign(3 * n, -std::numeric_limits<double>::infinity());
+    this->MinId.assign(n, std::numeric_limits<Index>::max());
+  }
+  Index Count(int b) const { return this->Start[b + 1] - this->Start[b]; }
+};
+
+Index LargestBucket(const BucketSet& buckets)
+{
+  Index largest = 0;
+  for (std::size_t b = 0; b + 1 < buckets.Start.size(); ++b)
+  {
+    largest = std::max(largest, buckets.Start[b + 1] - buckets.Start[b]);
+  }
+  return largest;
+}
+} // namespace
+
+/// Per-thread scratch of the build: reused, so that the many small ranges
+/// near the leaves allocate nothing.
+struct Neighbors::Scratch
+{
+  SplitPlan Plan;
+  BucketSet Buckets;
+  std::vector<Piece> Pieces = std::vector<Piece>(MaxDepth + 2); // one per depth
+  std::vector<std::uint8_t> Bucket; // of each entry of the range being split
+  std::vector<Entry> Spare;         // the range, bucket by bucket, before it is copied back
+};
+
+void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+{
+  this->Points.clear();
+  this->Nodes.clear();
+  const Index n = static_cast<Index>(ids.size());
+  if (n == 0)
+  {
+    return;
+  }
+  Task root;
+  root.End = n;
+  {
+    root.MinId = std::numeric_limits<Index>::max();
+    for (int a = 0; a < 3; ++a)
+    {
+      root.Lo[a] = std::numeric_limits<double>::infinity();
+      root.Hi[a] = -std::numeric_limits<double>::infinity();
+    }
+    for (Index id : ids)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        root.Lo[a] = std::min(root.Lo[a], xyz[3 * id + a]);
+        root.Hi[a] = std::max(root.Hi[a], xyz[3 * id + a]);
+      }
+      root.MinId = std::min(root.MinId, id);
+    }
+  }
+  std::copy(root.Lo, root.Lo + 3, this->BoxMin);
+  std::copy(root.Hi, root.Hi + 3, this->BoxMax);
+
+  // The root's split is made while the points are copied in: a parallel
+  // stable counting sort of the points by bucket (up to 4096 of them). Then
+  // the subtree of each bucket is built depth first by one thread, while
+  // its points are in cache, into its own array; last, the root's nodes
+  // and the subtrees are laid out depth first (the left child right after
+  // its parent).
+  Piece top;
+  std::vector<std::vector<Node>> subtrees; // by bucket when byBucket, else by child of top
+  bool byBucket = false;
+  Scratch rootScratch;
+  SplitPlan& plan = rootScratch.Plan;
+  const bool spatial = n > LeafSize && (root.Lo[0] < root.Hi[0] || root.Lo[1] < root.Hi[1] ||
+                                        root.Lo[2] < root.Hi[2]) &&
+    plan.Make(root.Lo, root.Hi, n, LeafSize, SplitPlan::MostBits);
+  BucketSet& buckets = rootScratch.Buckets;
+  if (spatial)
+  {
+    buckets.Reset(plan.Buckets());
+    GroupBy(
+      n, plan.Buckets(), [&](Index i) { return plan.BucketOf(xyz + 3 * ids[i]); },
+      [&](Index i) {
+        const double* p = xyz + 3 * ids[i];
+        return Entry{ { p[0], p[1], p[2] }, ids[i] };
+      },
+      buckets.Start, this->Points, execution);
+  }
+  else
+  {
+    this->Points.resize(ids.size());
+    execution.Run(0, n, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        const double* p = xyz + 3 * ids[i];
+        this->Points[i] = Entry{ { p[0], p[1], p[2] }, ids[i] };
+      }
+    });
+  }
+  if (spatial && 4 * LargestBucket(buckets) <= 3 * n)
+  {
+    byBucket = true;
+    subtrees.resize(static_cast<std::size_t>(plan.Buckets()));
+    execution.Run(0, plan.Buckets(), [&](Index b, Index e) {
+      Scratch scratch;
+      for (Index k = b; k < e; ++k)
+      {
+        if (buckets.Count(k) == 0)
+        {
+          continue;
+        }
+        Task task;
+        task.Begin = buckets.Start[k];
+        task.End = buckets.Start[k + 1];
+        task.Depth = root.Depth + 1;
+        RangeBounds(this->Points.data(), task.Begin, task.End, task.Lo, task.Hi, task.MinId);
+        std::copy(task.Lo, task.Lo + 3, &buckets.Lo[3 * k]);
+        std::copy(task.Hi, task.Hi + 3, &buckets.Hi[3 * k]);
+        buckets.MinId[k] = task.MinId;
+        if (Splits(task))
+        {
+          this->BuildSubtree(task, subtrees[k], scratch);
+        }
+      }
+    });
+    top.Nodes.emplace_back();
+    Node& node = top.Nodes[0].Value;
+    node.Begin = 0;
+    node.End = n;
+    node.MinId = root.MinId;
+    this->SplitNodes(root, rootScratch, top);
+  }
+  else
+  {
+    // Clustered, tiny or coincident: the root splits at the median.
+    this->BuildTask(root, top, rootScratch);
+    subtrees.resize(top.Children.size());
+    execution.Run(0, static_cast<Index>(top.Children.size()), [&](Index b, Index e) {
+      Scratch scratch;
+      for (Index k = b; k < e; ++k)
+      {
+        this->BuildSubtree(top.Children[k], subtrees[k], scratch);
+      }
+    });
+  }
+  this->Nodes.clear();
+  this->Nodes.reserve(top.Nodes.size() +
+    std::accumulate(subtrees.begin(), subtrees.end(), std::size_t(0),
+      [](std::size_t sum, const std::vector<Node>& t) { return sum + t.size(); }));
+  this->Emit(top, 0, this->Nodes, [&](int k) {
+    // A subtree laid out on its own: its right-child links move by `base`.
+    std::size_t which = static_cast<std::size_t>(k);
+    if (byBucket)
+    {
+      which = static_cast<std::size_t>(std::upper_bound(buckets.Start.begin(), buckets.Start.end(),
+                                          top.Children[which].Begin) - buckets.Start.begin() - 1);
+    }
+    const auto base = static_cast<Index>(this->Nodes.size());
+    for (Node node : subtrees[which])
+    {
+      node.Right += node.Right >= 0 ? base : 0;
+      this->Nodes.push_back(node);
+    }
+    std::vector<Node>().swap(subtrees[which]);
+  });
+}
+
+void Neighbors::BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& scratch)
+{
+  Piece& piece = scratch.Pieces[static_cast<std::size_t>(task.Depth)];
+  piece.Nodes.clear();
+  piece.Children.clear();
+  this->BuildTask(task, piece, scratch);
+  this->Emit(piece, 0, out,
+    [&](int k) { this->BuildSubtree(piece.Children[static_cast<std::size_t>(k)], out, scratch); });
+}
+
+template <typename Pending>
+Index Neighbors::Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending)
+{
+  const auto self = static_cast<Index>(out.size());
+  const Piece::Local& node = piece.Nodes[static_cast<std::size_t>(local)];
+  if (node.Pending >= 0)
+  {
+    pending(node.Pending);
+    return self;
+  }
+  out.push_back(node.Value);
+  if (node.Left >= 0)
+  {
+    this->Emit(piece, node.Left, out, pending); // self + 1
+    const Index right = this->Emit(piece, node.Right, out, pending);
+    out[static_cast<std::size_t>(self)].Right = right;
+  }
+  return self;
+}
+
+bool Neighbors::Splits(const Task& task)
+{
+  const bool coincident =
+    task.Lo[0] == task.Hi[0] && task.Lo[1] == task.Hi[1] && task.Lo[2] == task.Hi[2];
+  return !coincident && task.End - task.Begin > LeafSize && task.Depth < MaxDepth;
+}
+
+int Neighbors::AddChild(const Task& task, Index begin, Index end, const double lo[3],
+  const double hi[3], Index minId, Piece& piece)
+{
+  Task child;
+  child.Begin = begin;
+  child.End = end;
+  child.Depth = task.Depth + 1;
+  std::copy(lo, lo + 3, child.Lo);
+  std::copy(hi, hi + 3, child.Hi);
+  child.MinId = minId;
+  const int local = static_cast<int>(piece.Nodes.size());
+  piece.Nodes.emplace_back();
+  if (Splits(child))
+  {
+    piece.Nodes.back().Pending = static_cast<int>(piece.Children.size());
+    piece.Children.push_back(child);
+  }
+  else
+  {
+    piece.Nodes.back().Value = Leaf(child);
+  }
+  return local;
+}
+
+Neighbors::Node Neighbors::Leaf(const Task& task)
+{
+  Node node;
+  node.Begin = task.Begin;
+  node.End = task.End;
+  node.MinId = task.MinId;
+  if (task.Lo[0] == task.Hi[0] && task.Lo[1] == task.Hi[1] && task.Lo[2] == task.Hi[2])
+  {
+    // Coincident points: one leaf, by id, so a query can stop early.
+    node.Coincident = true;
+    std::sort(this->Points.data() + task.Begin, this->Points.data() + task.End,
+      [](const Entry& x, const Entry& y) { return x.Id < y.Id; });
+  }
+  return node;
+}
+
+void Neighbors::BuildTask(const Task& task, Piece& piece, Scratch& scratch)
+{
+  piece.Nodes.emplace_back();
+  if (!Splits(task))
+  {
+    piece.Nodes[0].Value = this->Leaf(task); // only the root can be a leaf here
+    return;
+  }
+  Node& node = piece.Nodes[0].Value;
+  node.Begin = task.Begin;
+  node.End = task.End;
+  node.MinId = task.MinId;
+  // A spatial split into up to 256 buckets: one counting pass (which takes
+  // the buckets' bounds too), then the entries bucket by bucket, through a
+  // spare array when the range is small enough to stay in cache, else in
+  // place (American flag sort). The median split when it would leave most
+  // points together (clustered data) or the box is too thin to divide.
+  Entry* const points = this->Points.data();
+  const Index begin = task.Begin, end = task.End, n = end - begin;
+  SplitPlan& plan = scratch.Plan;
+  BucketSet& buckets = scratch.Buckets;
+  if (plan.Make(task.Lo, task.Hi, n, LeafSize, 8))
+  {
+    const int count = plan.Buckets();
+    buckets.Reset(count);
+    std::vector<Index>& start = buckets.Start;
+    const bool spare = n <= SpareSize;
+    if (spare)
+    {
+      scratch.Bucket.resize(static_cast<std::size_t>(n));
+    }
+    for (Index i = begin; i < end; ++i)
+    {
+      const Entry& e = points[i];
+      const int b = plan.BucketOf(e.P);
+      if (spare)
+      {
+        scratch.Bucket[static_cast<std::size_t>(i - begin)] = static_cast<std::uint8_t>(b);
+      }
+      ++start[b + 1];
+      for (int a = 0; a < 3; ++a)
+      {
+        buckets.Lo[3 * b + a] = std::min(buckets.Lo[3 * b + a], e.P[a]);
+        buckets.Hi[3 * b + a] = std::max(buckets.Hi[3 * b + a], e.P[a]);
+      }
+      buckets.MinId[b] = std::min(buckets.MinId[b], e.Id);
+    }
+    start[0] = begin;
+    for (int b = 0; b < count; ++b)
+    {
+      start[b + 1] += start[b];
+    }
+    if (4 * LargestBucket(buckets) <= 3 * n)
+    {
+      Index fill[1 << 8];
+      std::copy(start.begin(), start.end() - 1, fill);
+      if (spare)
+      {
+        scratch.Spare.resize(static_cast<std::size_t>(n));
+        for (Index i = begin; i < end; ++i)
+        {
+          scratch.Spare[static_cast<std::size_t>(fill[scratch.Bucket[i - begin]]++ - begin)] = points[i];
+        }
+        std::copy(scratch.Spare.begin(), scratch.Spare.begin() + n, points + begin);
+      }
+      else
+      {
+        for (int b = 0; b < count; ++b)
+        {
+          while (fill[b] < start[b + 1])
+          {
+            Entry carried = points[fill[b]];
+            int target = plan.BucketOf(carried.P);
+            while (target != b)
+            {
+              std::swap(carried, points[fill[target]++]);
+              target = plan.BucketOf(carried.P);
+            }
+            points[fill[b]++] = carried;
+          }
+        }
+      }
+      this->SplitNodes(task, scratch, piece);
+      return;
+    }
+  }
+  this->MedianSplit(task, piece);
+}
+
+void Neighbors::SplitNodes(const Task& task, const Scratch& scratch, Piece& piece)
+{
+  // The binary nodes over buckets [bl, bh), split on the axis of bit j of
+  // the bucket index; node 0 is the task's own (it always splits: no bucket
+  // holds every point). Empty halves are skipped.
+  const SplitPlan& plan = scratch.Plan;
+  const BucketSet& buckets = scratch.Buckets;
+  const std::vector<Index>& start = buckets.Start;
+  std::function<int(int, int, int, int)> make = [&](int bl, int bh, int j, int self) -> int {
+    if (bh - bl == 1)
+    {
+      return this->AddChild(task, start[bl], start[bh], &buckets.Lo[3 * bl], &buckets.Hi[3 * bl],
+        buckets.MinId[bl], piece);
+    }
+    const int half = (bl + bh) / 2;
+    if (start[half] == start[bl] || start[bh] == start[half])
+    {
+      return start[half] == start[bl] ? make(half, bh, j + 1, self) : make(bl, half, j + 1, self);
+    }
+    const int local = self >= 0 ? self : static_cast<int>(piece.Nodes.size());
+    if (self < 0)
+    {
+      piece.Nodes.emplace_back();
+    }
+    const int axis = plan.Sequence[j];
+    Node value;
+    value.Begin = start[bl];
+    value.End = start[bh];
+    value.Axis = axis;
+    value.LowMax = -std::numeric_limits<double>::infinity();
+    value.HighMin = std::numeric_limits<double>::infinity();
+    value.MinId = std::numeric_limits<Index>::max();
+    for (int b = bl; b < bh; ++b)
+    {
+      if (buckets.Count(b) > 0)
+      {
+        value.MinId = std::min(value.MinId, buckets.MinId[b]);
+        if (b < half)
+        {
+          value.LowMax = std::max(value.LowMax, buckets.Hi[3 * b + axis]);
+        }
+        else
+        {
+          value.HighMin = std::min(value.HighMin, buckets.Lo[3 * b + axis]);
+        }
+      }
+    }
+    const int left = make(bl, half, j + 1, -1);
+    const int right = make(half, bh, j + 1, -1);
+    piece.Nodes[local].Value = value;
+    piece.Nodes[local].Left = left;
+    piece.Nodes[local].Right = right;
+    return local;
+  };
+  make(0, plan.Buckets(), 0, 0);
+}
+
+void Neighbors::MedianSplit(const Task& task, Piece& piece)
+{
+  // Split on (coordinate, id) along the longest axis, so that the halves
+  // are ordered even when many points share a coordinate: around the median
+  // of an evenly spaced sample of the range, in one partition pass that also
+  // takes the halves' bounds; when that leaves either half with fewer than
+  // 3/8 of the points, at the exact median (nth_element) instead.
+  Entry* const points = this->Points.data();
+  const Index begin = task.Begin, end = task.End, n = end - begin;
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+  {
+    if (task.Hi[a] - task.Lo[a] > task.Hi[axis] - task.Lo[axis])
+    {
+      axis = a;
+    }
+  }
+  auto less = [axis](const Entry& x, const Entry& y) {
+    return x.P[axis] < y.P[axis] || (x.P[axis] == y.P[axis] && x.Id < y.Id);
+  };
+  Task left, right;
+  Index mid = -1;
+  {
+    constexpr Index SampleSize = 63;
+    const Index m = std::min(n, SampleSize);
+    Entry sample[SampleSize];
+    for (Index k = 0; k < m; ++k)
+    {
+      sample[k] = points[begin + k * n / m];
+    }
+    std::nth_element(sample, sample + m / 2, sample + m, less);
+    const Entry pivot = sample[m / 2];
+    mid = PartitionWithBounds(points, begin, end, pivot, less, left, right);
+    if (8 * (mid - begin) < 3 * n || 8 * (end - mid) < 3 * n)
+    {
+      mid = -1;
+    }
+  }
+  if (mid < 0)
+  {
+    mid = begin + n / 2;
+    std::nth_element(points + begin, points + mid, points + end, less);
+    RangeBounds(points, begin, mid, left.Lo, left.Hi, left.MinId);
+    RangeBounds(points, mid, end, right.Lo, right.Hi, right.MinId);
+  }
+  Node& node = piece.Nodes[0].Value;
+  node.Axis = axis;
+  node.LowMax = left.Hi[axis];
+  node.HighMin = right.Lo[axis];
+  const int l = this->AddChild(task, begin, mid, left.Lo, left.Hi, left.MinId, piece);
+  const int r = this->AddChild(task, mid, end, right.Lo, right.Hi, right.MinId, piece);
+  piece.Nodes[0].Left = l;
+  piece.Nodes[0].Right = r;
+}
+} // namespace asmcore
