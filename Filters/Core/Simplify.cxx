@@ -338,7 +338,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   }
 
   // 1. Hash the points into the grid.
-  const CellGrid grid = BuildRunGrid(xyz, ids, parameters, target, execution);
+  CellGrid grid = BuildRunGrid(xyz, ids, parameters, target, execution);
   if (execution.Report(0.1))
   {
     result.Aborted = true;
@@ -406,7 +406,9 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     sampleStart[c + 1] = sampleStart[c] + budget[c];
   }
   result.Samples.resize(static_cast<std::size_t>(sampleStart[cells]));
-  result.Members.assign(static_cast<std::size_t>(total), -1);
+  // The members start as the grid's order (the points cell by cell): each
+  // cell rewrites its own range, from a copy of it, grouped by sample.
+  result.Members = std::move(grid.Order);
 
   Eigen::Vector3d cloudCentroid = Eigen::Vector3d::Zero();
   if (parameters.CloudCentroid)
@@ -429,17 +431,17 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   // its own slots, so the result does not depend on the thread count.
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
+    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
       if (budget[c] == 0)
       {
-        // No sample: the points stay unclaimed in their slots.
-        std::copy(grid.CellPoints(c), grid.CellPoints(c) + grid.CellSizeOf(c),
-          result.Members.begin() + grid.CellStart[c]);
-        continue;
+        continue; // no sample: the points stay unclaimed in their slots
       }
-      const Index* points = grid.CellPoints(c);
       const Index n = grid.CellSizeOf(c);
+      cellPoints.assign(result.Members.begin() + grid.CellStart[c],
+        result.Members.begin() + grid.CellStart[c + 1]);
+      const Index* points = cellPoints.data();
       const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(xyz, points, n);
       KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
       const std::vector<Group> groups =
