@@ -74,7 +74,9 @@ class VTKASMFILTERS_EXPORT Neighbors
 public:
   /// Most points in a leaf (ranges of coincident points excepted, and
   /// ranges at MaxDepth); a grid split leaves 1 to LeafSize points per leaf.
-  static constexpr Index LeafSize = 32;
+  /// Of 24 to 128, 64 built fastest and answered k = 20 queries about as
+  /// fast as 128 (4 M points on a surface).
+  static constexpr Index LeafSize = 64;
   /// Depth bound in splits (each a grid of buckets or a median split), a
   /// safeguard: splits that keep at most 3/4 of a range reach it only
   /// beyond 2^44 points; a range at this depth is one leaf.
