@@ -64,15 +64,15 @@ Quality Reference::Measure(const std::vector<double>& simplified, int planeNeigh
   const asmcore::Neighbors sampleTree(simplified.data(), sids);
   const double scale = this->Diag > 0.0 ? 1.0 / this->Diag : 1.0;
 
-  const std::vector<double> toSamples =
-    asmcore::NearestDistances(this->Xyz.data(), this->Ids, sampleTree, execution);
+  std::vector<double> toSamples, toPlane;
+  asmcore::SurfaceDistances(this->Xyz.data(), this->Ids, simplified.data(), sampleTree,
+    planeNeighbors, &toPlane, &toSamples, execution);
   const std::vector<double> toOriginal =
     asmcore::NearestDistances(simplified.data(), sids, this->Tree, execution);
   q.NNRms = scale * std::sqrt(0.5 * (MeanSquare(toSamples) + MeanSquare(toOriginal)));
   q.Hole = scale * *std::max_element(toSamples.begin(), toSamples.end());
 
-  const asmcore::DistanceSummary plane = asmcore::Summarize(asmcore::PointToPlaneDistances(
-    this->Xyz.data(), this->Ids, simplified.data(), sampleTree, planeNeighbors, execution));
+  const asmcore::DistanceSummary plane = asmcore::Summarize(toPlane);
   q.PlaneMean = scale * plane.Mean;
   q.PlaneMax = scale * plane.Max;
 

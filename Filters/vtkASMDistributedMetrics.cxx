@@ -155,10 +155,13 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   result.MKPE = keys.Max;
 
   // The owned original points against the whole simplified cloud.
-  result.OriginalToSimplified =
-    Reduce(comm, asmcore::NearestDistances(oxyz, owned, simplifiedTree));
-  result.PointToPlane = Reduce(comm,
-    asmcore::PointToPlaneDistances(oxyz, owned, all.data(), simplifiedTree, options.PlaneNeighbors));
+  {
+    std::vector<double> nearest, plane;
+    asmcore::SurfaceDistances(
+      oxyz, owned, all.data(), simplifiedTree, options.PlaneNeighbors, &plane, &nearest);
+    result.OriginalToSimplified = Reduce(comm, nearest);
+    result.PointToPlane = Reduce(comm, plane);
+  }
 
   // Each simplified point measured by the owner of its cell (owned + halo
   // original points), then summed: one contributor per point.
@@ -171,10 +174,9 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
     }
   }
   const asmcore::Neighbors localTree(oxyz, cloud.Ids);
-  const std::vector<double> nearest =
-    asmcore::NearestDistances(all.data(), mineToMeasure, localTree);
-  const std::vector<double> plane = asmcore::PointToPlaneDistances(
-    all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors);
+  std::vector<double> nearest, plane;
+  asmcore::SurfaceDistances(
+    all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors, &plane, &nearest);
   const std::size_t n = allIds.size();
   const int fields = curvatureNeighbors > 0 ? 4 : 2;
   std::vector<double> perPoint(fields * n, 0.0);

@@ -3,6 +3,7 @@
 
 #include "CellFrame.h"
 #include "CellSize.h"
+#include "GroupBy.h"
 #include "Neighbors.h"
 
 #include <algorithm>
@@ -59,44 +60,117 @@ std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, const std::vector
   return keys;
 }
 
+namespace
+{
+// The positions in `ids` grouped by a coarse grid over their bounding box
+// (cells numbered in Morton order), about 64 points per cell: queries made
+// in this order walk a k-d tree of a nearby cloud through a small working
+// set, whatever the order of the points. Stable: deterministic.
+std::vector<Index> SpatialOrder(
+  const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+{
+  const Index n = static_cast<Index>(ids.size());
+  const Bounds bounds = ComputeBounds(xyz, ids, execution);
+  int bits = 0; // per axis
+  while (bits < 5 && (Index(64) << (3 * (bits + 1))) <= n)
+  {
+    ++bits;
+  }
+  double scale[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double extent = bounds.Max[a] - bounds.Min[a];
+    scale[a] = extent > 0.0 ? static_cast<double>(1 << bits) / extent : 0.0;
+    scale[a] = std::isfinite(scale[a]) ? scale[a] : 0.0;
+  }
+  const double top = static_cast<double>((1 << bits) - 1);
+  auto cellOf = [&](Index i) {
+    const double* p = xyz + 3 * ids[i];
+    Index key = 0;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = static_cast<int>(std::min(top, std::max(0.0, (p[a] - bounds.Min[a]) * scale[a])));
+    }
+    for (int b = bits - 1; b >= 0; --b)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        key = 2 * key + ((c[a] >> b) & 1);
+      }
+    }
+    return key;
+  };
+  std::vector<Index> start, order;
+  GroupBy(n, Index(1) << (3 * bits), cellOf, [](Index i) { return i; }, start, order, execution);
+  return order;
+}
+} // namespace
+
+void SurfaceDistances(const double* xyz, const std::vector<Index>& ids, const double* surfaceXyz,
+  const Neighbors& surface, int k, std::vector<double>* plane, std::vector<double>* nearest,
+  const Execution& execution)
+{
+  const double infinity = std::numeric_limits<double>::infinity();
+  for (std::vector<double>* d : { plane, nearest })
+  {
+    if (d)
+    {
+      d->assign(ids.size(), infinity);
+    }
+  }
+  if (ids.empty())
+  {
+    return;
+  }
+  const std::vector<Index> order = SpatialOrder(xyz, ids, execution);
+  // Only the nearest point when no plane is asked for.
+  k = plane ? std::max(1, k) : 1;
+  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
+    std::vector<Index> near;
+    std::vector<double> sq;
+    for (Index j = b; j < e; ++j)
+    {
+      const Index i = order[j];
+      const double* p = xyz + 3 * ids[i];
+      surface.KNearest(p, k, near, sq);
+      if (near.empty())
+      {
+        continue;
+      }
+      if (nearest)
+      {
+        (*nearest)[i] = std::sqrt(sq[0]);
+      }
+      if (!plane)
+      {
+        continue;
+      }
+      if (near.size() < 3)
+      {
+        (*plane)[i] = std::sqrt(sq[0]);
+        continue;
+      }
+      const CellFrame fit =
+        ComputeCellFrame(surfaceXyz, near.data(), static_cast<Index>(near.size()));
+      (*plane)[i] = std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid));
+    }
+  });
+}
+
 std::vector<double> NearestDistances(
   const double* xyz, const std::vector<Index>& ids, const Neighbors& target, const Execution& execution)
 {
-  std::vector<double> d(ids.size(), std::numeric_limits<double>::infinity());
-  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
-    {
-      d[i] = target.Nearest(xyz + 3 * ids[i]).Distance;
-    }
-  });
+  std::vector<double> d;
+  SurfaceDistances(xyz, ids, nullptr, target, 1, nullptr, &d, execution);
   return d;
 }
 
 std::vector<double> PointToPlaneDistances(const double* xyz, const std::vector<Index>& ids,
   const double* surfaceXyz, const Neighbors& surface, int k, const Execution& execution)
 {
-  std::vector<double> d(ids.size(), std::numeric_limits<double>::infinity());
-  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
-    std::vector<Index> near;
-    std::vector<double> sq;
-    for (Index i = b; i < e; ++i)
-    {
-      const double* p = xyz + 3 * ids[i];
-      surface.KNearest(p, std::max(1, k), near, sq);
-      if (near.empty())
-      {
-        continue;
-      }
-      if (near.size() < 3)
-      {
-        d[i] = std::sqrt(sq[0]);
-        continue;
-      }
-      const CellFrame plane =
-        ComputeCellFrame(surfaceXyz, near.data(), static_cast<Index>(near.size()));
-      d[i] = std::abs(plane.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - plane.Centroid));
-    }
-  });
+  std::vector<double> d;
+  SurfaceDistances(xyz, ids, surfaceXyz, surface, k, &d, nullptr, execution);
   return d;
 }
 
@@ -197,22 +271,23 @@ Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
     return result;
   }
 
-  // Nearest-neighbour distances both ways, and the Hausdorff distance.
-  result.OriginalToSimplified = Summarize(NearestDistances(xyz, ids, simplifiedTree, execution));
-  result.SimplifiedToOriginal = Summarize(NearestDistances(sxyz, sids, originalTree, execution));
-  result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);
-  if (execution.Report(0.7))
+  // Nearest-neighbour distances both ways (the Hausdorff distance), and
+  // point-to-plane: original points to the simplified surface, and each
+  // simplified point's distance to the original surface; each direction in
+  // one pass of k-nearest queries.
+  std::vector<double> plane, nearest;
+  SurfaceDistances(xyz, ids, sxyz, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
+  result.PointToPlane = Summarize(plane);
+  result.OriginalToSimplified = Summarize(nearest);
+  if (execution.Report(0.8))
   {
     result.Aborted = true;
     return result;
   }
-
-  // Point-to-plane: original points to the simplified surface, and each
-  // simplified point's distance to the original surface.
-  result.PointToPlane = Summarize(
-    PointToPlaneDistances(xyz, ids, sxyz, simplifiedTree, options.PlaneNeighbors, execution));
-  result.SimplifiedError =
-    PointToPlaneDistances(sxyz, sids, xyz, originalTree, options.PlaneNeighbors, execution);
+  SurfaceDistances(sxyz, sids, xyz, originalTree, options.PlaneNeighbors, &result.SimplifiedError,
+    &nearest, execution);
+  result.SimplifiedToOriginal = Summarize(nearest);
+  result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);
   execution.Report(1.0);
   return result;
 }

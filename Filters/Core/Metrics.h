@@ -57,6 +57,16 @@ VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz
   const std::vector<Index>& ids, const double* surfaceXyz, const Neighbors& surface, int k,
   const Execution& execution = {});
 
+/// For each point xyz[3*id], id in ids, from its k nearest points of the
+/// cloud `surfaceXyz` indexed by `surface` (one query each): in `plane`
+/// what PointToPlaneDistances gives, in `nearest` what NearestDistances
+/// gives (either may be null; resized to ids.size()). The queries are made
+/// in a spatially coherent order (a coarse Morton grid), whatever the order
+/// of the points; each answer is the same as alone.
+VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, const std::vector<Index>& ids,
+  const double* surfaceXyz, const Neighbors& surface, int k, std::vector<double>* plane,
+  std::vector<double>* nearest, const Execution& execution = {});
+
 /// Parameters of CompareClouds.
 struct VTKASMFILTERS_EXPORT ComparisonOptions
 {

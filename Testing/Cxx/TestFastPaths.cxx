@@ -6,6 +6,7 @@
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Lloyd.h"
+#include "Core/Metrics.h"
 #include "Core/Neighbors.h"
 
 #include "TestHelpers.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <numeric>
 #include <random>
@@ -351,4 +353,59 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
     changed += check[i] >= 0 && order[check[i]] % 17 == 0 ? 1 : 0;
   }
   EXPECT_GT(changed, 0) << "some points must now belong to a moved sample";
+}
+
+// The fused, spatially ordered metric queries (SurfaceDistances) give, for
+// every point whatever the order of the ids, exactly the definitions: the
+// distance to the nearest surface point, and the distance to the PCA plane
+// of the k nearest (by squared distance, ties by id), by brute force.
+TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
+{
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Cloud surface, queries;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double x = u(rng), y = u(rng);
+    asmtest::Add(surface, x, y, 0.2 * x * x - 0.1 * y + 0.01 * u(rng));
+  }
+  for (int i = 0; i < 5000; ++i)
+  {
+    asmtest::Add(queries, 1.2 * u(rng), 1.2 * u(rng), 0.3 * u(rng));
+  }
+  asmtest::Add(surface, 0.5, 0.5, 0.0); // a duplicate pair: ties by id
+  asmtest::Add(surface, 0.5, 0.5, 0.0);
+  std::vector<Index> sids(surface.size() / 3), qids(queries.size() / 3);
+  std::iota(sids.begin(), sids.end(), Index(0));
+  std::iota(qids.begin(), qids.end(), Index(0));
+  std::shuffle(qids.begin(), qids.end(), rng); // a random order of the queries
+  const asmcore::Neighbors tree(surface.data(), sids);
+  const int k = 8;
+  std::vector<double> plane, nearest;
+  asmcore::SurfaceDistances(
+    queries.data(), qids, surface.data(), tree, k, &plane, &nearest, UnevenTwoThreads());
+  ASSERT_EQ(qids.size(), plane.size());
+  ASSERT_EQ(qids.size(), nearest.size());
+  EXPECT_EQ(nearest, asmcore::NearestDistances(queries.data(), qids, tree));
+  EXPECT_EQ(plane, asmcore::PointToPlaneDistances(queries.data(), qids, surface.data(), tree, k));
+  for (std::size_t i = 0; i < qids.size(); ++i)
+  {
+    const double* p = queries.data() + 3 * qids[i];
+    std::vector<std::pair<double, Index>> ranked;
+    for (Index s : sids)
+    {
+      const double* x = surface.data() + 3 * s;
+      const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
+      ranked.emplace_back(dx * dx + dy * dy + dz * dz, s);
+    }
+    std::partial_sort(ranked.begin(), ranked.begin() + k, ranked.end());
+    ASSERT_EQ(std::sqrt(ranked[0].first), nearest[i]) << i;
+    std::vector<Index> near(k);
+    for (int j = 0; j < k; ++j)
+    {
+      near[j] = ranked[j].second;
+    }
+    const asmcore::CellFrame fit = asmcore::ComputeCellFrame(surface.data(), near.data(), k);
+    ASSERT_EQ(std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid)), plane[i]) << i;
+  }
 }
