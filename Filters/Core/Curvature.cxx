@@ -65,7 +65,11 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   const Eigen::Vector3d origin = pv - (pv - frame.Centroid).dot(n) * n;
   const Eigen::Vector3d e0 = frame.Axes.col(0);
   const Eigen::Vector3d e1 = frame.Axes.col(1);
-  Eigen::Matrix<double, Eigen::Dynamic, 3> local(count, 3);
+  // Scratch kept per thread: the many small fits of a run allocate nothing.
+  thread_local Eigen::Matrix<double, Eigen::Dynamic, 3> local;
+  thread_local Eigen::Matrix<double, Eigen::Dynamic, 6> design;
+  thread_local Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 6>> qr;
+  local.resize(count, 3);
   double radius2 = 0.0;
   for (Index i = 0; i < count; ++i)
   {
@@ -84,15 +88,15 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   local /= scale;
 
   // 4. Least squares: w = a u^2 + b uv + c v^2 + d u + e v + f.
-  Eigen::Matrix<double, Eigen::Dynamic, 6> design(count, 6);
+  design.resize(count, 6);
   for (Index i = 0; i < count; ++i)
   {
     const double u = local(i, 0);
     const double v = local(i, 1);
     design.row(i) << u * u, u * v, v * v, u, v, 1.0;
   }
-  Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 6>> qr(design);
   qr.setThreshold(RankThreshold);
+  qr.compute(design);
   if (qr.rank() < 6)
   {
     return estimate; // ill-posed: plane
