@@ -380,7 +380,13 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         }
         const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
           (x[2] - p[2]) * (x[2] - p[2]);
-        if (d < bestD || (d == bestD && first[m] < nearest))
+        // Ties, rounding included (a two-point cluster's centre is as near
+        // to both): the first position, whatever the order of the points.
+        // (Duplicates: the lower id.)
+        const double* y = nearest < 0 ? nullptr : xyz + 3 * nearest;
+        if (NearlyEqual(d, bestD)
+            ? !y || PositionBefore(x, y) || (!PositionBefore(y, x) && first[m] < nearest)
+            : d < bestD)
         {
           bestD = d;
           nearest = first[m];
