@@ -4,6 +4,7 @@
 #include "Budget.h"
 #include "CellFrame.h"
 #include "CellNeighbors.h"
+#include "Covering.h"
 #include "FeatureKeyPoints.h"
 #include "Grid.h"
 #include "GroupBy.h"
@@ -213,6 +214,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   keyOptions.MinimumProminence = std::max(0.0, parameters.KeyPointProminence) * keyOptions.Radius;
   keyOptions.InPlaneExtremes = parameters.InPlaneKeyPoints;
   keyOptions.ExtremeRepresentative = parameters.ExtremeKeyPoints;
+  keyOptions.SparseCells = parameters.SparseCellKeyPoints;
   std::vector<std::vector<FeatureKey>> keys(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     LocalPoints q;
@@ -323,6 +325,13 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     // One Lloyd step re-centres the moved samples and their neighbours.
     UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, distance2, execution);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+  }
+
+  // Covering refinement of the input-point samples (Covering.h).
+  const bool inputPoints = parameters.InputPointSamples || parameters.Snap;
+  for (int round = 0; inputPoints && round < parameters.CoveringRounds; ++round)
+  {
+    RefineCovering(P, grid, neighbors, samples, assign, distance2, execution);
   }
 
   // Clusters: every point joins its nearest sample.
