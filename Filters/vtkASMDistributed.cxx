@@ -701,7 +701,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
   {
     const double targetCells = static_cast<double>(std::min(parameters.NumberOfSamples, total)) /
-      std::max(1.0, parameters.SamplesPerCell);
+      asmcore::SamplesPerCellOf(parameters);
     // As the serial search: first on the subsample picked by coordinates
     // (the same points however the cloud is split), then on all points.
     const std::vector<double> subset = asmcore::CellSizeSubsample(
@@ -745,7 +745,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
       share.OwnedKeys.push_back(cloud.Keys[i]);
       capacity.push_back(static_cast<Index>(j - i));
       // The same frame the core computes (same points, same order).
-      variation.push_back(parameters.Weight == asmcore::WeightMode::SurfaceVariation
+      variation.push_back(asmcore::VariationWeightOf(parameters) != 0.0
           ? asmcore::ComputeCellFrame(cloud.Xyz.data(), cloud.Ids.data() + i, static_cast<Index>(j - i))
               .SurfaceVariation()
           : 0.0);

@@ -31,6 +31,7 @@ set(ASM_FILTERS_CORE
   FeatureKeyPoints
   Lloyd
   HoleFilling
+  Covering
   FeatureSimplify
   Neighbors
   Curvature

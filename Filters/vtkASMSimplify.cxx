@@ -66,9 +66,9 @@ int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
 bool vtkASMSimplify::CheckParameters()
 {
   const double values[] = { this->OutputFraction, this->CellSize, this->SamplesPerCell, this->Alpha,
-    this->ErrorTolerance, this->CurvatureWeight };
+    this->ErrorTolerance, this->CurvatureWeight, this->FeatureSamplesPerCell, this->VariationBudget };
   const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha",
-    "ErrorTolerance", "CurvatureWeight" };
+    "ErrorTolerance", "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget" };
   for (std::size_t i = 0; i < sizeof(values) / sizeof(values[0]); ++i)
   {
     if (!std::isfinite(values[i]))
@@ -175,6 +175,11 @@ int vtkASMSimplify::RequestData(
                        "output then does not depend on the number of processes).");
     parameters.FillHoles = false;
   }
+  parameters.FeatureSamplesPerCell = this->FeatureSamplesPerCell;
+  parameters.VariationBudget = this->VariationBudget;
+  // Covering refinement moves samples across the halo: not distributed.
+  parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
+  parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
   vtkPointData* inPD = input->GetPointData();
   asmvtk::SimplifyShare share;
   if (distributed)
@@ -370,6 +375,10 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InputPointSamples: " << this->InputPointSamples << "\n";
   os << indent << "FillHoles: " << this->FillHoles << "\n";
   os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
+  os << indent << "FeatureSamplesPerCell: " << this->FeatureSamplesPerCell << "\n";
+  os << indent << "VariationBudget: " << this->VariationBudget << "\n";
+  os << indent << "CoveringRounds: " << this->CoveringRounds << "\n";
+  os << indent << "SparseCellKeyPoints: " << this->SparseCellKeyPoints << "\n";
   os << indent << "TargetMode: "
      << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";
   os << indent << "OutputFraction: " << this->OutputFraction << "\n";

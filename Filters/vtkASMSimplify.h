@@ -62,13 +62,17 @@
  * Lemma 2 across cell borders (ValidateKeyPoints, KeyPointRadius,
  * KeyPointProminence: where the grid cuts a smooth surface is not a
  * feature); extremes along +-v0/+-v1 and the frame diagonals as key points
- * (InPlaneKeyPoints: spike tips, corners); a key point placed on its extreme
+ * (InPlaneKeyPoints: spike tips, corners), also in cells too sparse for a
+ * frame (SparseCellKeyPoints); a key point placed on its extreme
  * input point (ExtremeKeyPoints); one sample per non-empty cell first and a
  * budget N_c ~ w_c * n_c^BudgetExponent (CoverEveryCell, BudgetExponent);
  * connected middle clusters by Lloyd iterations with the key samples fixed,
  * inside each cell and then across cell borders (LloydIterations,
  * CrossCellIterations); samples placed on input points (InputPointSamples);
- * and a bounded hole-filling pass (FillHoles, HoleFillFraction). In this
+ * a bounded hole-filling pass (FillHoles, HoleFillFraction); finer cells
+ * (FeatureSamplesPerCell) whose budget follows the surface variation
+ * (VariationBudget); and input-point samples that cover their clusters
+ * (CoveringRounds). In this
  * mode a cluster is the set of input points nearest a sample, the count is
  * still exactly N_s, and AKPE/MKPE are 0 when the key points sit on their
  * extreme points. The options other than Mode are ignored in PAPER mode.
@@ -85,9 +89,9 @@
  * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
- * MPI launcher) started it, or with AlwaysDistribute; FillHoles
- * (FEATURE_PRESERVING) is global and switched off in distributed runs (with
- * a warning). The serial path gives the same points too when FillHoles is
+ * MPI launcher) started it, or with AlwaysDistribute; FillHoles and
+ * CoveringRounds (FEATURE_PRESERVING) are global and switched off in
+ * distributed runs (FillHoles with a warning). The serial path gives the same points too when FillHoles is
  * off. Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
@@ -274,6 +278,57 @@ public:
 
   ///@{
   /**
+   * FEATURE_PRESERVING: mean number of output samples per non-empty grid
+   * cell aimed at by the automatic cell size in this mode (SamplesPerCell is
+   * PAPER mode's; <= 0: SamplesPerCell); default 4. Finer cells let the
+   * budget follow the surface variation (VariationBudget) more closely.
+   */
+  vtkSetMacro(FeatureSamplesPerCell, double);
+  vtkGetMacro(FeatureSamplesPerCell, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: k of the budget weight w_c = 1 + k * sigma_c /
+   * mean(sigma), sigma the cell's surface variation (unitless, >= 0; 0: the
+   * same weight for every cell): bent and creased cells get more samples;
+   * default 0.5. With WeightMode SURFACE_VARIATION_WEIGHT, CurvatureWeight is
+   * k instead.
+   */
+  vtkSetClampMacro(VariationBudget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(VariationBudget, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING, with InputPointSamples or SnapToInputPoints: rounds
+   * of covering refinement, in [0, 8]; default 2. A round moves every
+   * non-key sample to the member of its cluster whose farthest member is
+   * nearest (instead of the member nearest the cluster's centre), then
+   * re-forms the clusters: the largest hole shrinks and never grows. 0: the
+   * input point nearest the centre. Global like FillHoles: distributed runs
+   * switch it off.
+   */
+  vtkSetClampMacro(CoveringRounds, int, 0, 8);
+  vtkGetMacro(CoveringRounds, int);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING, with ValidateKeyPoints and InPlaneKeyPoints: in a
+   * cell of fewer than 3
+   * points (too few for a PCA frame), a point that is the Lemma 2 extreme
+   * along the direction away from the centroid of its neighbours within
+   * KeyPointRadius (and stands out by KeyPointProminence) is a key point: a
+   * spike tip alone in its cell; default on.
+   */
+  vtkSetMacro(SparseCellKeyPoints, bool);
+  vtkGetMacro(SparseCellKeyPoints, bool);
+  vtkBooleanMacro(SparseCellKeyPoints, bool);
+  ///@}
+
+  ///@{
+  /**
    * Whether N_s comes from OutputFraction (default) or NumberOfOutputPoints.
    */
   vtkSetClampMacro(TargetMode, int, OUTPUT_FRACTION, NUMBER_OF_OUTPUT_POINTS);
@@ -312,7 +367,8 @@ public:
   ///@{
   /**
    * Mean number of output samples per non-empty grid cell aimed at by the
-   * automatic cell size (points per cell, >= 1); default 8.
+   * automatic cell size (points per cell, >= 1); default 8. PAPER mode; the
+   * default mode uses FeatureSamplesPerCell when it is > 0.
    */
   vtkSetClampMacro(SamplesPerCell, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SamplesPerCell, double);
@@ -469,6 +525,10 @@ protected:
   bool InputPointSamples = true;
   bool FillHoles = true;
   double HoleFillFraction = 0.02;
+  double FeatureSamplesPerCell = 4.0;
+  double VariationBudget = 0.5;
+  int CoveringRounds = 2;
+  bool SparseCellKeyPoints = true;
   int TargetMode = OUTPUT_FRACTION;
   double OutputFraction = 0.05;
   vtkIdType NumberOfOutputPoints = 1000;

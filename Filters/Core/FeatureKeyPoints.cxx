@@ -49,6 +49,43 @@ bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborT
   return true;
 }
 
+bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  Index c, Index id, double radius, double& prominence)
+{
+  // The direction away from the centroid of the other points within the radius.
+  const double* p = xyz + 3 * id;
+  const double r = std::min(radius, grid.Spec.CellSize);
+  double mean[3] = { 0.0, 0.0, 0.0 };
+  Index count = 0;
+  for (int k = 0; k < 27; ++k)
+  {
+    const Index nb = neighbors.Of(c)[k];
+    if (nb < 0 || (k != 13 && SquaredDistanceToCell(grid.Spec, grid.CellKey[nb], p) > r * r))
+    {
+      continue;
+    }
+    for (Index i = 0; i < grid.CellSizeOf(nb); ++i)
+    {
+      const double* x = xyz + 3 * grid.CellPoints(nb)[i];
+      const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
+      if (grid.CellPoints(nb)[i] != id && dx * dx + dy * dy + dz * dz <= r * r)
+      {
+        mean[0] += dx;
+        mean[1] += dy;
+        mean[2] += dz;
+        ++count;
+      }
+    }
+  }
+  const double length = std::sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
+  if (count < 2 || !(length > 0.0))
+  {
+    return false; // alone or with one neighbour: no direction to stand out along
+  }
+  const double d[3] = { -mean[0] / length, -mean[1] / length, -mean[2] / length };
+  return IsLocalExtreme(xyz, grid, neighbors, c, id, d, radius, prominence);
+}
+
 std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
   const FeatureKeyOptions& options, LocalPoints& q)
@@ -58,7 +95,27 @@ std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
   const Index n = grid.CellSizeOf(c);
   if (n < 3)
   {
-    return keys; // too few points for a frame: coverage handles them
+    // Too few points for a frame: coverage gives the cell a sample; with
+    // SparseCells (and the in-plane extremes, tips), a point that stands out
+    // from its neighbourhood (a spike tip alone in its cell) is a key point.
+    if (options.SparseCells && options.Validate && options.InPlaneExtremes)
+    {
+      for (Index i = 0; i < n; ++i)
+      {
+        FeatureKey key;
+        if (IsSparseCellTip(xyz, grid, neighbors, c, points[i], options.Radius, key.Prominence) &&
+          key.Prominence > options.MinimumProminence)
+        {
+          key.Point = points[i];
+          std::copy(xyz + 3 * points[i], xyz + 3 * points[i] + 3, key.Position);
+          keys.push_back(key);
+        }
+      }
+      std::sort(keys.begin(), keys.end(), [](const FeatureKey& a, const FeatureKey& b) {
+        return a.Prominence > b.Prominence || (a.Prominence == b.Prominence && a.Point < b.Point);
+      });
+    }
+    return keys;
   }
   const KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, options.Rule, q);
   if (kc.Flat)

@@ -46,6 +46,10 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
   double MinimumProminence = 0.0; ///< a validated key stands out by more than this (length)
   bool InPlaneExtremes = true;    ///< +-v0 and +-v1 extremes are candidates too
   bool ExtremeRepresentative = true; ///< a key sample is its extreme point, not the band centroid
+  /// Cells of fewer than 3 points (no frame): a point that is the extreme
+  /// away from the centroid of its neighbours within Radius is a key (with
+  /// Validate and InPlaneExtremes)
+  bool SparseCells = true;
 };
 
 /// The key points of cell c, ordered by decreasing prominence (ties: point
@@ -53,6 +57,12 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(const double* xyz,
   const CellGrid& grid, const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
   const FeatureKeyOptions& options, LocalPoints& q);
+
+/// A tip alone in a cell too sparse for a frame: whether input point `id` of
+/// cell c is the extreme (IsLocalExtreme) along the direction away from the
+/// centroid of the other points within `radius` (at least two of them).
+VTKASMFILTERS_EXPORT bool IsSparseCellTip(const double* xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, Index c, Index id, double radius, double& prominence);
 
 /// Lemma 2 across cell borders: whether input point `id` of cell c is the
 /// extreme along the unit vector d among all points within `radius` (at most

@@ -4,6 +4,7 @@
 #include "Budget.h"
 #include "CellFrame.h"
 #include "CellNeighbors.h"
+#include "Covering.h"
 #include "FeatureKeyPoints.h"
 #include "Grid.h"
 #include "GroupBy.h"
@@ -213,6 +214,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   keyOptions.MinimumProminence = std::max(0.0, parameters.KeyPointProminence) * keyOptions.Radius;
   keyOptions.InPlaneExtremes = parameters.InPlaneKeyPoints;
   keyOptions.ExtremeRepresentative = parameters.ExtremeKeyPoints;
+  keyOptions.SparseCells = parameters.SparseCellKeyPoints;
   std::vector<std::vector<FeatureKey>> keys(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     LocalPoints q;
@@ -325,6 +327,13 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
+  // Covering refinement of the input-point samples (Covering.h).
+  const bool inputPoints = parameters.InputPointSamples || parameters.Snap;
+  for (int round = 0; inputPoints && round < parameters.CoveringRounds; ++round)
+  {
+    RefineCovering(P, grid, neighbors, samples, assign, distance2, execution);
+  }
+
   // Clusters: every point joins its nearest sample.
   AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
   JoinUnassignedPoints(P, samples, count, assign, execution);
@@ -380,7 +389,13 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         }
         const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
           (x[2] - p[2]) * (x[2] - p[2]);
-        if (d < bestD || (d == bestD && first[m] < nearest))
+        // Ties, rounding included (a two-point cluster's centre is as near
+        // to both): the first position, whatever the order of the points.
+        // (Duplicates: the lower id.)
+        const double* y = nearest < 0 ? nullptr : xyz + 3 * nearest;
+        if (NearlyEqual(d, bestD)
+            ? !y || PositionBefore(x, y) || (!PositionBefore(y, x) && first[m] < nearest)
+            : d < bestD)
         {
           bestD = d;
           nearest = first[m];

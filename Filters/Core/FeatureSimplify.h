@@ -5,7 +5,8 @@
  * step of SimplifyFeaturePreserving so that a distributed driver can hook in
  * between them:
  *
- *  1. grid: hash the points (automatic or given cell size, as in Paper mode);
+ *  1. grid: hash the points (automatic or given cell size, as in Paper mode,
+ *     the automatic one for FeatureSamplesPerCell samples per cell);
  *  2. per-cell analysis: PCA frame, key points (FeatureKeyPoints.h) — the
  *     extremes along +-v2 of the band clusters (link distance
  *     FeatureLinkFactor spacings) and, with InPlaneKeyPoints, along +-v0/+-v1,
@@ -13,14 +14,17 @@
  *     KeyPointRadius * h, neighbouring cells included (ValidateKeyPoints);
  *     a key sample sits on its extreme point (ExtremeKeyPoints);
  *  3. budget: N_c ~ w_c * n_c^BudgetExponent (from the cell's own points and
- *     the global mean of the weight), with one sample per non-empty cell
+ *     the global mean of the weight; w_c = 1 + VariationBudget * sigma_c /
+ *     mean(sigma)), with one sample per non-empty cell
  *     first when N_s allows (CoverEveryCell), exact in total;
  *  4. sampling: per cell, the most prominent key points up to N_c, then the
  *     free samples by farthest-point seeding and LloydIterations Lloyd
  *     iterations inside the cell with the key samples fixed (Lloyd.h);
  *  5. cross-cell refinement: CrossCellIterations Lloyd iterations across cell
- *     borders; optionally (FillHoles) a bounded hole-filling pass; then every
- *     point joins its nearest sample (the sample's cluster).
+ *     borders; optionally (FillHoles) a bounded hole-filling pass; with
+ *     input-point samples, CoveringRounds rounds of covering refinement
+ *     (Covering.h); then every point joins its nearest sample (the sample's
+ *     cluster).
  *
  * Locality, for distributed runs: every step after the budget reads one ring
  * of cells, so a cell's samples depend only on the points within
@@ -31,8 +35,8 @@
  * rule) is global: a distributed driver computes it over all cells and
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
- * samples are output (vtkASMDistributed.h). The hole filling is global and
- * is not supported in distributed runs.
+ * samples are output (vtkASMDistributed.h). The hole filling and the
+ * covering refinement are global and are not supported in distributed runs.
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h

@@ -20,6 +20,9 @@
 #include "CellNeighbors.h"
 #include "KeyPoints.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace asmcore
 {
 /// |a - b|^2 for two 3-vectors.
@@ -27,6 +30,20 @@ inline double SquaredDistance(const double* a, const double* b)
 {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
   return dx * dx + dy * dy + dz * dz;
+}
+
+/// Whether squared distances a and b differ by rounding only (the centroid
+/// of two points is as far from both, whatever the summation order), so that
+/// the choice between them is made on positions instead (PositionBefore).
+inline bool NearlyEqual(double a, double b)
+{
+  return a == b || (std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-12 * std::max(a, b));
+}
+
+/// Lexicographic order of two positions: the order-independent tie-break.
+inline bool PositionBefore(const double* a, const double* b)
+{
+  return std::lexicographical_compare(a, a + 3, b, b + 3);
 }
 
 /// A cell owning more samples than this is handled with O(n log b) steps

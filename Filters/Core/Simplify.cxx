@@ -245,6 +245,22 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
+double SamplesPerCellOf(const SimplifyParameters& parameters)
+{
+  const bool feature = parameters.Mode == SimplifyMode::FeaturePreserving;
+  return std::max(1.0,
+    feature && parameters.FeatureSamplesPerCell > 0.0 ? parameters.FeatureSamplesPerCell : parameters.SamplesPerCell);
+}
+
+double VariationWeightOf(const SimplifyParameters& parameters)
+{
+  if (parameters.Weight == WeightMode::SurfaceVariation)
+  {
+    return parameters.CurvatureWeight;
+  }
+  return parameters.Mode == SimplifyMode::FeaturePreserving ? std::max(0.0, parameters.VariationBudget) : 0.0;
+}
+
 std::vector<double> CellShares(const std::vector<Index>& capacity,
   const std::vector<double>& variation, const SimplifyParameters& parameters, double exponent)
 {
@@ -258,12 +274,13 @@ std::vector<double> CellShares(const std::vector<Index>& capacity,
   }
   meanVariation /= static_cast<double>(std::max<Index>(1, total));
   std::vector<double> share(cells);
+  const double k = VariationWeightOf(parameters);
   for (std::size_t c = 0; c < cells; ++c)
   {
     double weight = 1.0;
-    if (parameters.Weight == WeightMode::SurfaceVariation && meanVariation > 0.0)
+    if (k != 0.0 && meanVariation > 0.0)
     {
-      weight += parameters.CurvatureWeight * variation[c] / meanVariation;
+      weight += k * variation[c] / meanVariation;
     }
     const auto n = static_cast<double>(capacity[c]);
     share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));
@@ -298,7 +315,7 @@ CellGrid BuildRunGrid(const double* xyz, const std::vector<Index>& ids,
   {
     return BuildCellGrid(xyz, ids, GridSpec::Make(bounds, cellSize), execution);
   }
-  const double targetCells = static_cast<double>(target) / std::max(1.0, parameters.SamplesPerCell);
+  const double targetCells = static_cast<double>(target) / SamplesPerCellOf(parameters);
   return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution);
 }
 

@@ -60,6 +60,22 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
   int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step
+  /// Mean budget per non-empty cell aimed at by the automatic cell size in
+  /// this mode (SamplesPerCell is the paper mode's); <= 0: SamplesPerCell.
+  double FeatureSamplesPerCell = 4.0;
+  /// k of the budget weight w_c = 1 + k * sigma_c / mean(sigma) (surface
+  /// variation, unitless) when Weight is Uniform; 0: w_c = 1. With Weight =
+  /// SurfaceVariation, CurvatureWeight is k as in Paper mode.
+  double VariationBudget = 0.5;
+  /// Rounds of covering refinement (Covering.h) of the input-point samples
+  /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
+  /// centre. Global, like FillHoles: not for distributed runs.
+  int CoveringRounds = 2;
+  /// A point of a cell of fewer than 3 points (no PCA frame) that is the
+  /// Lemma 2 extreme away from its neighbours within KeyPointRadius is a key
+  /// point (a spike tip alone in its cell); needs ValidateKeyPoints and
+  /// InPlaneKeyPoints.
+  bool SparseCellKeyPoints = true;
 
   /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.
   /// Every process calls Simplify on the points of the cells it owns plus a
@@ -80,6 +96,16 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   std::function<bool(std::uint64_t cellKey)> OutputCell;
   ///@}
 };
+
+/// The mean budget per non-empty cell the automatic cell size aims at:
+/// SamplesPerCell in Paper mode, FeatureSamplesPerCell (when > 0) in the
+/// feature-preserving mode; at least 1.
+VTKASMFILTERS_EXPORT double SamplesPerCellOf(const SimplifyParameters& parameters);
+
+/// k of the budget weight w_c = 1 + k * sigma_c / mean(sigma): CurvatureWeight
+/// with WeightMode::SurfaceVariation, else VariationBudget in the
+/// feature-preserving mode, else 0 (w_c = 1).
+VTKASMFILTERS_EXPORT double VariationWeightOf(const SimplifyParameters& parameters);
 
 /// The shares w_c * n_c^exponent of Eq. 4 of cells holding `capacity` points
 /// each, with surface variations `variation`, listed in ascending cell key

@@ -186,7 +186,9 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.CoverEveryCell = false; }, [](auto& p) { p.BudgetExponent = 1.0; },
     [](auto& p) { p.LloydIterations = 0; }, [](auto& p) { p.CrossCellIterations = 0; },
     [](auto& p) { p.FillHoles = false; }, [](auto& p) { p.Snap = true; },
-    [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } };
+    [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
+    [](auto& p) { p.FeatureSamplesPerCell = 8.0; }, [](auto& p) { p.VariationBudget = 0.0; },
+    [](auto& p) { p.CoveringRounds = 0; }, [](auto& p) { p.SparseCellKeyPoints = false; } };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
@@ -242,6 +244,11 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "InputPointSamplesOff", [](vtkASMSimplify* f) { f->InputPointSamplesOff(); } },
     { "FillHolesOff", [](vtkASMSimplify* f) { f->FillHolesOff(); } },
     { "HoleFillFraction", [](vtkASMSimplify* f) { f->SetHoleFillFraction(0.1); } },
+    { "FeatureSamplesPerCell", [](vtkASMSimplify* f) { f->SetFeatureSamplesPerCell(8.0); } },
+    { "VariationBudget", [](vtkASMSimplify* f) { f->SetVariationBudget(0.0); } },
+    { "CoveringRounds", [](vtkASMSimplify* f) { f->SetCoveringRounds(0); } },
+    // (SparseCellKeyPoints changes nothing on the fandisk: no tip alone in a
+    // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)
     { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   std::vector<std::vector<double>> results;
@@ -290,6 +297,10 @@ TEST(FeaturePreserving, DefaultModeIsFeaturePreserving)
   EXPECT_EQ(filter->GetInputPointSamples(), core.InputPointSamples);
   EXPECT_EQ(filter->GetFillHoles(), core.FillHoles);
   EXPECT_EQ(filter->GetHoleFillFraction(), core.HoleFillFraction);
+  EXPECT_EQ(filter->GetFeatureSamplesPerCell(), core.FeatureSamplesPerCell);
+  EXPECT_EQ(filter->GetVariationBudget(), core.VariationBudget);
+  EXPECT_EQ(filter->GetCoveringRounds(), core.CoveringRounds);
+  EXPECT_EQ(filter->GetSparseCellKeyPoints(), core.SparseCellKeyPoints);
   EXPECT_TRUE(filter->GetValidateKeyPoints());
   EXPECT_EQ(filter->GetBudgetExponent(), 0.5);
   filter->SetModeToPaper();

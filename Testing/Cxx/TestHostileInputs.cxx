@@ -179,7 +179,10 @@ TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
   EXPECT_LT(sagitta, 5.0);
   EXPECT_LT(SphereDeviation(out, far, radius, false), sagitta + 2.0);
   EXPECT_LT(SphereDeviation(out, far, radius, true), sagitta + 2.0);
-  EXPECT_GT(FieldValue(out, "NumberOfKeyPoints"), 0.5 * referenceKeys);
+  // (A smooth sphere: at the origin the default mode finds no key points
+  // (since FeatureSamplesPerCell 4 and VariationBudget), and far away the
+  // 1 m rounding must not take them away where there are some.)
+  EXPECT_GE(FieldValue(out, "NumberOfKeyPoints"), 0.5 * referenceKeys);
   EXPECT_LT(FieldValue(out, "MKPE"), 0.1 * radius);
   EXPECT_NEAR(FieldValue(out, "CellSize"), FieldValue(ref, "CellSize"),
     0.25 * FieldValue(ref, "CellSize"));

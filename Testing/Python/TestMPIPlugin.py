@@ -37,7 +37,7 @@ asm = ASMSimplify(Input=spread, TargetMode="Number Of Output Points",  # noqa: F
 if MODE == "paper":
     asm.Mode = "Paper"
 else:
-    asm.SamplesPerCell = 4.0  # the default mode, FillHoles switched off by the filter
+    asm.FeatureSamplesPerCell = 4.0  # the default mode, FillHoles switched off by the filter
 kpe = KeyPointError(Original=spread, Simplified=asm)  # noqa: F405
 kpe.UpdatePipeline()
 

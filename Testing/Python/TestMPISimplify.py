@@ -9,12 +9,12 @@ sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
 
 Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
-FEATURE_PRESERVING mode, N_s = 3000 with SamplesPerCell 4, a finer grid so
+FEATURE_PRESERVING mode, N_s = 3000 with FeatureSamplesPerCell 4, a grid fine enough so
 that each process's halo of 7 cell rings does not cover the whole bunny;
 FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
-(one process, AlwaysDistribute off), so the serial path runs (FillHoles off
-in the feature mode, as a distributed run has it); its output must match
+(one process, AlwaysDistribute off), so the serial path runs (FillHoles and
+CoveringRounds off in the feature mode, as a distributed run has them); its output must match
 the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
@@ -68,9 +68,10 @@ if MODE == "paper":
     asm.SetMode(vtkASMSimplify.PAPER)
 else:
     assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
-    asm.SetSamplesPerCell(4.0)
+    asm.SetFeatureSamplesPerCell(4.0)
     if SERIAL:
         asm.FillHolesOff()
+        asm.SetCoveringRounds(0)  # global too: distributed runs switch it off
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which

@@ -45,6 +45,10 @@ expected_defaults = {
     "InputPointSamples": 1,
     "FillHoles": 1,
     "HoleFillFraction": 0.02,
+    "FeatureSamplesPerCell": 4.0,
+    "VariationBudget": 0.5,
+    "CoveringRounds": 2,
+    "SparseCellKeyPoints": 1,
     # Parallel (MPI) runs.
     "AlwaysDistribute": 0,
 }

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Covering.h"
+
+#include "GroupBy.h"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+namespace asmcore
+{
+void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  SampleSet& samples, std::vector<Index>& assign, std::vector<double>& distance2,
+  const Execution& execution)
+{
+  AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
+  const Index count = samples.Size();
+  const Index points = static_cast<Index>(assign.size());
+  // The members (point slots) of every sample, in slot order.
+  std::vector<Index> start;
+  std::vector<Index> members;
+  GroupBy(
+    points, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, start, members,
+    execution);
+  auto at = [xyz, &grid](Index slot) { return xyz + 3 * grid.Order[slot]; };
+  execution.Run(0, count, [&](Index b, Index e) {
+    std::vector<std::pair<double, Index>> candidates; // (squared distance to the centroid, slot)
+    for (Index s = b; s < e; ++s)
+    {
+      const Index first = start[s], last = start[s + 1];
+      if (samples.Fixed[s] || last == first)
+      {
+        continue;
+      }
+      double* position = samples.Position.data() + 3 * s;
+      double centroid[3] = { 0.0, 0.0, 0.0 };
+      for (Index m = first; m < last; ++m)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          centroid[a] += at(members[m])[a];
+        }
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        centroid[a] /= static_cast<double>(last - first);
+      }
+      candidates.clear();
+      Index current = -1; // the member the sample sits on, if any
+      for (Index m = first; m < last; ++m)
+      {
+        candidates.emplace_back(SquaredDistance(at(members[m]), centroid), members[m]);
+        if (current < 0 && SquaredDistance(at(members[m]), position) == 0.0)
+        {
+          current = members[m];
+        }
+      }
+      const auto keep = std::min<std::size_t>(candidates.size(), CoveringCandidates);
+      std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
+        candidates.end());
+      candidates.resize(keep);
+      if (current >= 0)
+      {
+        candidates.emplace_back(0.0, current);
+      }
+      // The candidate whose farthest member is nearest (ties, rounding
+      // included: the first position, whatever the order of the points).
+      double bestRadius = std::numeric_limits<double>::infinity();
+      Index best = -1;
+      for (const auto& candidate : candidates)
+      {
+        const double* c = at(candidate.second);
+        double radius = 0.0;
+        const double stop = bestRadius * (1.0 + 1e-12);
+        for (Index m = first; m < last && radius <= stop; ++m)
+        {
+          radius = std::max(radius, SquaredDistance(at(members[m]), c));
+        }
+        if (NearlyEqual(radius, bestRadius) ? PositionBefore(c, at(best)) : radius < bestRadius)
+        {
+          bestRadius = radius;
+          best = candidate.second;
+        }
+      }
+      std::copy(at(best), at(best) + 3, position);
+    }
+  });
+}
+} // namespace asmcore

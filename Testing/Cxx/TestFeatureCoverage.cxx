@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of the quality options of the feature-preserving mode (issue 7):
+// covering refinement (CoveringRounds), the budget that follows the surface
+// variation (VariationBudget) on finer cells (FeatureSamplesPerCell), tips
+// alone in sparse cells (SparseCellKeyPoints), and the order-independent
+// choice of a sample's input point.
+#include "Core/Simplify.h"
+
+#include "FeatureShapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <set>
+
+using asmcore::Index;
+using namespace asmtest;
+
+namespace
+{
+asmcore::SimplifyResult SimplifyWith(const Cloud& c, Index target,
+  const std::function<void(asmcore::SimplifyParameters&)>& configure = {})
+{
+  asmcore::SimplifyParameters p;
+  p.NumberOfSamples = target;
+  if (configure)
+  {
+    configure(p);
+  }
+  return asmcore::Simplify(c.data(), AllIds(c), nullptr, p);
+}
+
+// The largest hole: the input point farthest from every sample (brute force).
+double LargestHole(const Cloud& c, const asmcore::SimplifyResult& r)
+{
+  double hole = 0.0;
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    double best = 1e300;
+    for (const auto& s : r.Samples)
+    {
+      best = std::min(best,
+        std::hypot(c[i] - s.Position[0], c[i + 1] - s.Position[1], c[i + 2] - s.Position[2]));
+    }
+    hole = std::max(hole, best);
+  }
+  return hole;
+}
+
+bool IsInputPoint(const Cloud& c, const double* p)
+{
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    if (c[i] == p[0] && c[i + 1] == p[1] && c[i + 2] == p[2])
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::set<std::array<double, 3>> Positions(const asmcore::SimplifyResult& r)
+{
+  std::set<std::array<double, 3>> out;
+  for (const auto& s : r.Samples)
+  {
+    out.insert({ s.Position[0], s.Position[1], s.Position[2] });
+  }
+  return out;
+}
+} // namespace
+
+TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
+{
+  // 20 % of a sphere: five points per sample, where the input point nearest
+  // a cluster's centre can sit well to one side of it.
+  Shape sphere;
+  sphere.Points = Sphere(6000, 1.0, 3);
+  const Index target = 1200;
+  auto rounds = [&](int k) {
+    return SimplifyWith(sphere.Points, target, [k](auto& p) {
+      p.CoveringRounds = k;
+      p.FillHoles = false; // the refinement alone
+    });
+  };
+  const auto none = rounds(0), one = rounds(1), two = rounds(2), four = rounds(4);
+  const double h0 = LargestHole(sphere.Points, none), h1 = LargestHole(sphere.Points, one),
+               h2 = LargestHole(sphere.Points, two), h4 = LargestHole(sphere.Points, four);
+  // A round never lets the hole grow, and the refinement shrinks it.
+  EXPECT_LE(h2, h1);
+  EXPECT_LE(h4, h2);
+  EXPECT_LT(h2, 0.99 * h0) << h0 << " " << h1 << " " << h2 << " " << h4;
+  // Still exactly N_s samples, each an input point.
+  ASSERT_EQ(static_cast<Index>(two.Samples.size()), target);
+  for (const auto& s : two.Samples)
+  {
+    EXPECT_TRUE(IsInputPoint(sphere.Points, s.Position));
+  }
+  // Only with input-point samples: centroid samples do not change.
+  auto centroids = [&](int k) {
+    return Positions(SimplifyWith(sphere.Points, target, [k](auto& p) {
+      p.CoveringRounds = k;
+      p.InputPointSamples = false;
+    }));
+  };
+  EXPECT_EQ(centroids(0), centroids(2));
+}
+
+TEST(FeatureCoverage, BudgetFollowsTheSurfaceVariation)
+{
+  // A flat square next to a bumpy one (same area, same density): the bumpy
+  // half has the larger surface variation and gets more of the samples.
+  Cloud c;
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 40000; ++i)
+  {
+    const double x = 2.0 * u(rng), y = u(rng);
+    Add(c, x, y, x < 1.0 ? 0.0 : 0.05 * std::sin(20.0 * x) * std::sin(20.0 * y));
+  }
+  auto bumpyShare = [&](double k) {
+    const auto r = SimplifyWith(c, 2000, [k](auto& p) { p.VariationBudget = k; });
+    double n = 0.0;
+    for (const auto& s : r.Samples)
+    {
+      n += s.Position[0] > 1.0 ? 1.0 : 0.0;
+    }
+    return n / static_cast<double>(r.Samples.size());
+  };
+  const double uniform = bumpyShare(0.0), weighted = bumpyShare(0.5);
+  EXPECT_GT(weighted, uniform + 0.02) << uniform << " " << weighted;
+  // Paper mode ignores the option (and FeatureSamplesPerCell).
+  auto paper = [&](double k, double cells) {
+    return Positions(SimplifyWith(c, 2000, [k, cells](auto& p) {
+      p.Mode = asmcore::SimplifyMode::Paper;
+      p.VariationBudget = k;
+      p.FeatureSamplesPerCell = cells;
+    }));
+  };
+  EXPECT_EQ(paper(0.0, 8.0), paper(0.5, 4.0));
+}
+
+TEST(FeatureCoverage, FeatureSamplesPerCellSetsTheCellSize)
+{
+  const Shape box = Box(40000);
+  const double fine = SimplifyWith(box.Points, 4000).CellSize;
+  const double coarse = SimplifyWith(box.Points, 4000, [](auto& p) { p.FeatureSamplesPerCell = 8.0; }).CellSize;
+  // About sqrt(2) on a surface: half the samples per cell, half the area.
+  EXPECT_LT(fine, 0.85 * coarse);
+  EXPECT_GT(fine, 0.55 * coarse);
+  // <= 0: SamplesPerCell, as in Paper mode.
+  const double fallback = SimplifyWith(box.Points, 4000, [](auto& p) {
+    p.FeatureSamplesPerCell = 0.0;
+    p.SamplesPerCell = 8.0;
+  }).CellSize;
+  EXPECT_EQ(fallback, coarse);
+}
+
+TEST(FeatureCoverage, TipAloneInASparseCellIsAKeyPoint)
+{
+  // With these cells the cone's apex falls in a cell of two points, too few
+  // for a frame: only the sparse-cell rule makes it a key point.
+  const Shape cone = Cone(40000);
+  auto apexDistance = [&](bool sparse) {
+    const auto r = SimplifyWith(cone.Points, 4000, [sparse](auto& p) { p.SparseCellKeyPoints = sparse; });
+    double best = 1e300;
+    bool key = false;
+    for (const auto& s : r.Samples)
+    {
+      const double d = std::hypot(s.Position[0] - cone.Features[0][0],
+        s.Position[1] - cone.Features[0][1], s.Position[2] - cone.Features[0][2]);
+      if (d < best)
+      {
+        best = d;
+        key = s.Key;
+      }
+    }
+    return std::make_pair(best, key);
+  };
+  const auto with = apexDistance(true), without = apexDistance(false);
+  EXPECT_EQ(with.first, 0.0);
+  EXPECT_TRUE(with.second);
+  EXPECT_GT(without.first, 0.0);
+}
+
+TEST(FeatureCoverage, TwoPointClustersDoNotDependOnTheInputOrder)
+{
+  // Far-apart pairs of points, one sample each: the centre of a pair is as
+  // near to both (up to rounding), and the chosen point must not depend on
+  // which comes first.
+  Cloud pairs;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+  for (int i = 0; i < 30; ++i)
+  {
+    for (int j = 0; j < 30; ++j)
+    {
+      const double x = i + 0.1 * u(rng), y = j + 0.1 * u(rng);
+      Add(pairs, x + u(rng), y + u(rng), u(rng));
+      Add(pairs, x + u(rng), y + u(rng), 0.01 + u(rng));
+    }
+  }
+  Cloud reversed;
+  for (std::size_t i = pairs.size(); i >= 3; i -= 3)
+  {
+    reversed.insert(reversed.end(), pairs.begin() + (i - 3), pairs.begin() + i);
+  }
+  for (int rounds : { 0, 2 })
+  {
+    auto configure = [rounds](auto& p) { p.CoveringRounds = rounds; };
+    const auto a = SimplifyWith(pairs, 900, configure), b = SimplifyWith(reversed, 900, configure);
+    EXPECT_EQ(Positions(a), Positions(b)) << "CoveringRounds " << rounds;
+  }
+}
