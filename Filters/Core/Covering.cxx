@@ -55,10 +55,16 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
           current = members[m];
         }
       }
+      // The CoveringCandidates smallest (distance, slot) pairs, ascending
+      // (the pairs are distinct: one selection, one order).
       const auto keep = std::min<std::size_t>(candidates.size(), CoveringCandidates);
-      std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
-        candidates.end());
-      candidates.resize(keep);
+      if (keep < candidates.size())
+      {
+        std::nth_element(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep),
+          candidates.end());
+        candidates.resize(keep);
+      }
+      std::sort(candidates.begin(), candidates.end());
       if (current >= 0)
       {
         candidates.emplace_back(0.0, current);
