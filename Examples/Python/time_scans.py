@@ -1,12 +1,14 @@
 """Time vtkASMSimplify on PLY scans and print one line per scan (pvpython).
 
     PYTHONPATH=build/lib/python3/dist-packages pvpython Examples/Python/time_scans.py \
-        [--fraction 0.05] [--runs 5] [--threads 0] [--no-curvature] scan.ply [scan.ply ...]
+        [--fraction 0.05] [--runs 5] [--threads 0] [--no-curvature] [--mode paper] \
+        scan.ply [scan.ply ...]
 
 Prints N, N_s, the median wall time of --runs executions of the filter alone
 (reading excluded), AKPE, MKPE, the number of key points and the cell size.
 --threads > 0 uses vtkSMPTools' STDThread backend with that many threads;
-0 keeps the default backend (Sequential on Debian's ParaView).
+0 keeps the default backend (Sequential on Debian's ParaView). --mode picks
+the filter's Mode: "feature" (FEATURE_PRESERVING, the default) or "paper".
 """
 import argparse
 import os
@@ -25,11 +27,13 @@ def main():
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--no-curvature", action="store_true", help="GenerateCurvature off")
+    parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
     args = parser.parse_args()
     if args.threads > 0:
         vtkSMPTools.SetBackend("STDThread")
         vtkSMPTools.Initialize(args.threads)
-    print("backend %s, %d thread(s)" % (vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads()))
+    print("backend %s, %d thread(s), mode %s" % (
+        vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads(), args.mode))
     print("%-18s %9s %7s %9s %10s %10s %6s %9s" % ("scan", "N", "N_s", "time (s)", "AKPE", "MKPE", "keys", "cell"))
     for path in args.scans:
         reader = vtkPLYReader()
@@ -39,6 +43,7 @@ def main():
         asm.SetInputData(reader.GetOutput())
         asm.SetOutputFraction(args.fraction)
         asm.SetGenerateCurvature(not args.no_curvature)
+        asm.SetMode(vtkASMSimplify.PAPER if args.mode == "paper" else vtkASMSimplify.FEATURE_PRESERVING)
         times = []
         for _ in range(args.runs):
             asm.Modified()
