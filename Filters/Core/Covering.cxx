@@ -82,7 +82,8 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
         {
           radius = std::max(radius, SquaredDistance(at(members[m]), c));
         }
-        if (NearlyEqual(radius, bestRadius) ? PositionBefore(c, at(best)) : radius < bestRadius)
+        if (best < 0 ||
+          (NearlyEqual(radius, bestRadius) ? PositionBefore(c, at(best)) : radius < bestRadius))
         {
           bestRadius = radius;
           best = candidate.second;

@@ -28,7 +28,9 @@ Index NearestMember(
   for (const Index* it = first; it != last; ++it)
   {
     const double d = (q[*it] - target).squaredNorm();
-    if (d < bestDist || (d == bestDist && *it < best))
+    // The first member whatever its distance: squares that overflow (inf or
+    // NaN everywhere) still give a member.
+    if (best < 0 || d < bestDist || (d == bestDist && *it < best))
     {
       bestDist = d;
       best = *it;

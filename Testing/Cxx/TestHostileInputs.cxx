@@ -421,3 +421,28 @@ TEST(HostileInputs, ArraysShorterThanThePointsAreDroppedWithAWarning)
   error->Update();
   EXPECT_EQ(error->GetOutput(0)->GetNumberOfPoints(), 100);
 }
+
+TEST(HostileInputs, CoordinatesWhoseSquaresOverflow)
+{
+  // A sphere of radius 1e160: finite coordinates, but every squared
+  // distance overflows to infinity, so every distance comparison ties. Both
+  // modes must still give exactly N_s finite points (no crash, no read out
+  // of bounds under the sanitizers).
+  Cloud c = asmtest::Sphere(3000, 1.0, 5);
+  for (double& v : c)
+  {
+    v *= 1e160;
+  }
+  for (const bool paper : { false, true })
+  {
+    FilterRun run;
+    run.Count(150);
+    if (paper)
+    {
+      run.Filter->SetModeToPaper();
+    }
+    vtkPolyData* out = run.Execute(ToPolyData(c));
+    ASSERT_EQ(out->GetNumberOfPoints(), 150) << (paper ? "paper" : "default");
+    ExpectAllFinite(out);
+  }
+}
