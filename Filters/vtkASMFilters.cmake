@@ -46,10 +46,13 @@ set(ASM_FILTERS_PRIVATE
   vtkASMDistributedMetrics
 )
 # Private sources declared in another private header (paths relative to
-# Filters/): vtkASMDistributedFeature.cxx implements part of vtkASMDistributed.h,
-# Core/NeighborsBuild.cxx the build of Core/Neighbors.h's tree.
+# Filters/): vtkASMDistributed{Feature,Communication,Redistribute}.cxx implement
+# parts of vtkASMDistributed.h, Core/NeighborsBuild.cxx the build of
+# Core/Neighbors.h's tree.
 set(ASM_FILTERS_EXTRA_SOURCES
   vtkASMDistributedFeature.cxx
+  vtkASMDistributedCommunication.cxx
+  vtkASMDistributedRedistribute.cxx
   Core/NeighborsBuild.cxx
 )
 # Header-only private headers, if any (paths relative to Filters/).

@@ -1,0 +1,290 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// MPI runs: the points and their arrays sent to the processes that own
+// their cells (Redistribute, vtkASMDistributed.h).
+#include "vtkASMDistributed.h"
+
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkMultiProcessController.h"
+#include "vtkMultiProcessStream.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <utility>
+
+namespace asmvtk
+{
+//------------------------------------------------------------------------------
+namespace
+{
+// One transferred array: name, VTK type, components, attribute roles, and
+// its place in a point's record (in doubles).
+struct ArraySlot
+{
+  std::string Name;
+  int Type = VTK_DOUBLE;
+  int Components = 1;
+  int Attributes = 0; // bit a: the array is attribute a
+  int Offset = 0;
+  int Width = 0;
+};
+
+bool Transferable(vtkAbstractArray* array)
+{
+  auto* data = vtkDataArray::SafeDownCast(array);
+  return data && array->GetName() && data->GetDataType() != VTK_BIT &&
+    std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0;
+}
+
+// The arrays every process holding points can send, in the order of the
+// first such process; names of the others in `dropped`.
+std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd, bool hasPoints,
+  std::vector<std::string>& dropped)
+{
+  vtkMultiProcessStream stream;
+  std::vector<ArraySlot> slots;
+  if (hasPoints)
+  {
+    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+    {
+      vtkAbstractArray* array = pd->GetAbstractArray(i);
+      if (!Transferable(array))
+      {
+        if (array->GetName() &&
+          std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0)
+        {
+          dropped.push_back(std::string(array->GetName()) + " (not a numeric array)");
+        }
+        continue;
+      }
+      ArraySlot slot;
+      slot.Name = array->GetName();
+      slot.Type = array->GetDataType();
+      slot.Components = array->GetNumberOfComponents();
+      for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+      {
+        if (pd->GetAbstractAttribute(a) == array)
+        {
+          slot.Attributes |= 1 << a;
+        }
+      }
+      slots.push_back(slot);
+    }
+  }
+  if (comm.Size() == 1)
+  {
+    return slots;
+  }
+  // The first process with points decides the layout.
+  std::vector<long long> has(static_cast<std::size_t>(comm.Size()), 0);
+  has[comm.Rank()] = hasPoints ? 1 : 0;
+  comm.Sum(has);
+  const auto first = std::find(has.begin(), has.end(), 1LL);
+  const int root = first == has.end() ? 0 : static_cast<int>(first - has.begin());
+  if (comm.Rank() == root)
+  {
+    stream << static_cast<int>(slots.size());
+    for (const ArraySlot& s : slots)
+    {
+      stream << s.Name << s.Type << s.Components << s.Attributes;
+    }
+  }
+  comm.Controller()->Broadcast(stream, root);
+  int count = 0;
+  stream >> count;
+  std::vector<ArraySlot> agreed(static_cast<std::size_t>(count));
+  std::vector<long long> present(static_cast<std::size_t>(count), 1);
+  for (int i = 0; i < count; ++i)
+  {
+    ArraySlot& s = agreed[i];
+    stream >> s.Name >> s.Type >> s.Components >> s.Attributes;
+    vtkDataArray* mine = hasPoints ? pd->GetArray(s.Name.c_str()) : nullptr;
+    if (hasPoints &&
+      (!mine || mine->GetDataType() != s.Type || mine->GetNumberOfComponents() != s.Components))
+    {
+      present[i] = 0;
+    }
+  }
+  std::vector<long long> votes = present;
+  comm.Sum(votes); // an array must be on every process with points
+  const long long holders = std::accumulate(has.begin(), has.end(), 0LL);
+  std::vector<ArraySlot> kept;
+  for (int i = 0; i < count; ++i)
+  {
+    if (votes[i] == holders)
+    {
+      kept.push_back(agreed[i]);
+    }
+    else
+    {
+      dropped.push_back(agreed[i].Name + " (missing or different on some processes)");
+    }
+  }
+  return kept;
+}
+} // namespace
+
+LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
+  const std::vector<Index>& ids, const SlabPartition& partition, int haloRings)
+{
+  LocalCloud cloud;
+  vtkPointData* inPD = input->GetPointData();
+  std::vector<ArraySlot> slots = AgreeOnArrays(comm, inPD, !ids.empty(), cloud.Dropped);
+  // Record: x y z | arrays (bytes, each padded to whole doubles) | rank id.
+  int width = 3;
+  for (ArraySlot& s : slots)
+  {
+    s.Offset = width;
+    const int bytes = s.Components * vtkDataArray::GetDataTypeSize(s.Type);
+    s.Width = (bytes + 7) / 8;
+    width += s.Width;
+  }
+  const int payloadEnd = width;
+  width += 2;
+
+  std::vector<vtkDataArray*> arrays;
+  for (const ArraySlot& s : slots)
+  {
+    arrays.push_back(inPD->GetArray(s.Name.c_str()));
+  }
+  std::vector<std::vector<double>> send(static_cast<std::size_t>(comm.Size()));
+  std::vector<double> record(static_cast<std::size_t>(width));
+  std::vector<int> destinations;
+  std::vector<double> tuple;
+  for (Index id : ids)
+  {
+    const double* p = xyz + 3 * id;
+    std::fill(record.begin(), record.end(), 0.0);
+    std::copy(p, p + 3, record.begin());
+    for (std::size_t k = 0; k < slots.size(); ++k)
+    {
+      const ArraySlot& s = slots[k];
+      auto* bytes = reinterpret_cast<unsigned char*>(record.data() + s.Offset);
+      const int size = vtkDataArray::GetDataTypeSize(s.Type);
+      if (arrays[k]->HasStandardMemoryLayout())
+      {
+        // The values' bytes, exactly.
+        std::memcpy(bytes, arrays[k]->GetVoidPointer(id * s.Components),
+          static_cast<std::size_t>(size * s.Components));
+        continue;
+      }
+      tuple.resize(static_cast<std::size_t>(s.Components));
+      arrays[k]->GetTuple(id, tuple.data());
+      for (int c = 0; c < s.Components; ++c)
+      {
+        switch (s.Type)
+        {
+          vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
+                           std::memcpy(bytes + c * size, &v, sizeof(v)));
+        }
+      }
+    }
+    record[payloadEnd] = comm.Rank();
+    record[payloadEnd + 1] = static_cast<double>(id);
+    const std::int64_t axis = partition.AxisIndex(p);
+    destinations.clear();
+    for (int d = -haloRings; d <= haloRings; ++d)
+    {
+      destinations.push_back(partition.OwnerOf(axis + d));
+    }
+    std::sort(destinations.begin(), destinations.end());
+    destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
+    for (int r : destinations)
+    {
+      send[r].insert(send[r].end(), record.begin(), record.end());
+    }
+  }
+  const std::vector<double> received = comm.Exchange(send);
+
+  // Canonical order: cell key, coordinates, then the record's bytes. Sorted
+  // as compact items (no indirection unless two points coincide).
+  struct Item
+  {
+    std::uint64_t Key;
+    double P[3];
+    std::size_t Record;
+  };
+  const std::size_t n = received.size() / static_cast<std::size_t>(width);
+  std::vector<Item> items(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* r = received.data() + i * width;
+    items[i] = { partition.Grid.KeyOf(r), { r[0], r[1], r[2] }, i };
+  }
+  std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
+    if (a.Key != b.Key)
+    {
+      return a.Key < b.Key;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (a.P[c] != b.P[c])
+      {
+        return a.P[c] < b.P[c];
+      }
+    }
+    return std::memcmp(received.data() + a.Record * width + 3,
+             received.data() + b.Record * width + 3, sizeof(double) * (payloadEnd - 3)) < 0;
+  });
+  std::vector<std::uint64_t> keys(n);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    keys[items[i].Record] = items[i].Key;
+    order[i] = items[i].Record;
+  }
+  items.clear();
+  items.shrink_to_fit();
+
+  cloud.Xyz.resize(3 * n);
+  cloud.Ids.resize(n);
+  cloud.Keys.resize(n);
+  cloud.Owned.resize(n);
+  cloud.SourceRank.resize(n);
+  cloud.SourceId.resize(n);
+  cloud.PointData = vtkSmartPointer<vtkPointData>::New();
+  std::vector<vtkSmartPointer<vtkDataArray>> outArrays;
+  for (const ArraySlot& s : slots)
+  {
+    auto array = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(s.Type));
+    array->SetName(s.Name.c_str());
+    array->SetNumberOfComponents(s.Components);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(n));
+    const int index = cloud.PointData->AddArray(array);
+    for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+    {
+      if (s.Attributes & (1 << a))
+      {
+        cloud.PointData->SetActiveAttribute(index, a);
+      }
+    }
+    outArrays.push_back(array);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* r = received.data() + order[i] * width;
+    std::copy(r, r + 3, cloud.Xyz.begin() + 3 * i);
+    cloud.Ids[i] = static_cast<Index>(i);
+    cloud.Keys[i] = keys[order[i]];
+    std::int64_t ijk[3];
+    partition.Grid.Unpack(cloud.Keys[i], ijk);
+    cloud.Owned[i] = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
+    cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
+    cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
+    for (std::size_t k = 0; k < slots.size(); ++k)
+    {
+      const ArraySlot& s = slots[k];
+      const std::size_t bytes =
+        static_cast<std::size_t>(s.Components * vtkDataArray::GetDataTypeSize(s.Type));
+      std::memcpy(outArrays[k]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
+        r + s.Offset, bytes);
+    }
+  }
+  return cloud;
+}
+
+} // namespace asmvtk
