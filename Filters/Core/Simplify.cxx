@@ -224,20 +224,6 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   result.Members.swap(members);
 }
 
-// The shares of Eq. 4 with w_c = 1 (n_c per cell), and the capacities.
-std::vector<double> UniformCellShares(const CellGrid& grid, std::vector<Index>& capacity)
-{
-  const Index cells = grid.NumberOfCells();
-  capacity.resize(static_cast<std::size_t>(cells));
-  std::vector<double> share(static_cast<std::size_t>(cells));
-  for (Index c = 0; c < cells; ++c)
-  {
-    capacity[c] = grid.CellSizeOf(c);
-    share[c] = static_cast<double>(capacity[c]);
-  }
-  return share;
-}
-
 std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 {
   SplitMix64 mix(seed ^ (cellKey * 0xD1B54A32D192ED03ULL));
@@ -297,7 +283,7 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   for (Index c = 0; c < cells; ++c)
   {
     capacity[c] = grid.CellSizeOf(c);
-    variation[c] = frames[c].SurfaceVariation();
+    variation[c] = frames.empty() ? 0.0 : frames[c].SurfaceVariation();
   }
   return CellShares(capacity, variation, parameters, exponent);
 }
@@ -412,9 +398,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   else
   {
     std::vector<Index> capacity;
-    const std::vector<double> share = framesFirst
-      ? CellShares(frames, grid, parameters, 1.0, capacity)
-      : UniformCellShares(grid, capacity);
+    const std::vector<double> share = CellShares(frames, grid, parameters, 1.0, capacity);
     budget = ApportionBudget(share, capacity, target);
   }
   std::vector<Index> sampleStart(static_cast<std::size_t>(cells) + 1, 0);

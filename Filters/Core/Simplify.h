@@ -149,7 +149,8 @@ struct CellGrid;
 
 /// Budget shares of Eq. 4: w_c * n_c^exponent per non-empty cell of `grid`
 /// (w_c from parameters.Weight and the mean surface variation of the
-/// cloud), and each cell's capacity n_c.
+/// cloud; `frames` empty: every variation 0, so w_c = 1), and each cell's
+/// capacity n_c.
 VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>& frames,
   const CellGrid& grid, const SimplifyParameters& parameters, double exponent,
   std::vector<Index>& capacity);
