@@ -4,10 +4,12 @@
 #ifndef asm_FeatureShapes_h
 #define asm_FeatureShapes_h
 
+#include "Core/Simplify.h"
 #include "TestHelpers.h"
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 
 namespace asmtest
@@ -102,6 +104,20 @@ inline Shape TiltedPlane(std::size_t n, double noise = 1e-4, unsigned seed = 9)
   }
   return s;
 }
+/// The core's simplification of `c` to `target` samples, with the default
+/// parameters as changed by `configure` (if any).
+inline asmcore::SimplifyResult SimplifyWith(const Cloud& c, std::int64_t target,
+  const std::function<void(asmcore::SimplifyParameters&)>& configure = {})
+{
+  asmcore::SimplifyParameters p;
+  p.NumberOfSamples = target;
+  if (configure)
+  {
+    configure(p);
+  }
+  return asmcore::Simplify(c.data(), AllIds(c), nullptr, p);
+}
+
 } // namespace asmtest
 
 #endif

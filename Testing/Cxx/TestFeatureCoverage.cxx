@@ -21,17 +21,6 @@ using namespace asmtest;
 
 namespace
 {
-asmcore::SimplifyResult SimplifyWith(const Cloud& c, Index target,
-  const std::function<void(asmcore::SimplifyParameters&)>& configure = {})
-{
-  asmcore::SimplifyParameters p;
-  p.NumberOfSamples = target;
-  if (configure)
-  {
-    configure(p);
-  }
-  return asmcore::Simplify(c.data(), AllIds(c), nullptr, p);
-}
 
 // The largest hole: the input point farthest from every sample (brute force).
 double LargestHole(const Cloud& c, const asmcore::SimplifyResult& r)

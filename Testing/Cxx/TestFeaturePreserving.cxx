@@ -25,18 +25,6 @@ using namespace asmtest;
 
 namespace
 {
-asmcore::SimplifyResult Simplify(const Cloud& c, Index target,
-  const std::function<void(asmcore::SimplifyParameters&)>& configure = {})
-{
-  asmcore::SimplifyParameters p;
-  p.NumberOfSamples = target;
-  if (configure)
-  {
-    configure(p);
-  }
-  return asmcore::Simplify(c.data(), AllIds(c), nullptr, p);
-}
-
 double NearestSample(const asmcore::SimplifyResult& r, const std::array<double, 3>& x)
 {
   double best = 1e300;
@@ -81,11 +69,11 @@ TEST(FeaturePreserving, TiltedPlaneCutByTheGridHasNoKeyPoints)
 {
   const Shape plane = TiltedPlane(40000);
   // The literal reading takes every cell's highest and lowest points.
-  const auto paper = Simplify(plane.Points, 2000, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; });
+  const auto paper = SimplifyWith(plane.Points, 2000, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; });
   EXPECT_GT(paper.NumberOfKeyPoints, 200);
   // Default: none inside; only at the plane's outer border (a scan border
   // is a real extreme along the in-plane axes).
-  const auto r = Simplify(plane.Points, 2000);
+  const auto r = SimplifyWith(plane.Points, 2000);
   ASSERT_EQ(r.Samples.size(), 2000u);
   for (const auto& s : r.Samples)
   {
@@ -96,10 +84,10 @@ TEST(FeaturePreserving, TiltedPlaneCutByTheGridHasNoKeyPoints)
     }
   }
   // Without the in-plane extremes: no key point at all.
-  const auto noBorder = Simplify(plane.Points, 2000, [](auto& p) { p.InPlaneKeyPoints = false; });
+  const auto noBorder = SimplifyWith(plane.Points, 2000, [](auto& p) { p.InPlaneKeyPoints = false; });
   EXPECT_EQ(noBorder.NumberOfKeyPoints, 0);
   // Without the Lemma 2 check the grid cuts come back.
-  const auto unchecked = Simplify(plane.Points, 2000, [](auto& p) { p.ValidateKeyPoints = false; });
+  const auto unchecked = SimplifyWith(plane.Points, 2000, [](auto& p) { p.ValidateKeyPoints = false; });
   EXPECT_GT(unchecked.NumberOfKeyPoints, 200);
 }
 
@@ -110,10 +98,10 @@ TEST(FeaturePreserving, ConeApexAndBoxCornersAreKept)
   for (Index target : { 200, 1000, 4000 })
   {
     const Shape cone = Cone(40000);
-    const auto r = Simplify(cone.Points, target);
+    const auto r = SimplifyWith(cone.Points, target);
     EXPECT_LE(NearestSample(r, cone.Features[0]), cone.Spacing(40000)) << target;
     const Shape box = Box(40000);
-    const auto b = Simplify(box.Points, target);
+    const auto b = SimplifyWith(box.Points, target);
     for (const auto& corner : box.Features)
     {
       EXPECT_LE(NearestSample(b, corner), box.Spacing(40000))
@@ -134,7 +122,7 @@ TEST(FeaturePreserving, SparseCellsAreNotLeftEmpty)
   const Index target = 1000; // about 125 cells, far more than 5
   for (bool cover : { true, false })
   {
-    const auto r = Simplify(c, target, [&](auto& p) { p.CoverEveryCell = cover; p.BudgetExponent = 1.0; });
+    const auto r = SimplifyWith(c, target, [&](auto& p) { p.CoverEveryCell = cover; p.BudgetExponent = 1.0; });
     ASSERT_EQ(static_cast<Index>(r.Samples.size()), target);
     int covered = 0;
     for (const auto& p : lonely)
@@ -164,7 +152,7 @@ TEST(FeaturePreserving, MiddleClustersAreConnected)
   const Cloud c = GridSurface(n, 1.0, [](double x, double y) { return 0.15 * std::sin(3 * x) * std::cos(2 * y); });
   for (Index target : { 300, 1200 })
   {
-    const auto r = Simplify(c, target);
+    const auto r = SimplifyWith(c, target);
     ASSERT_EQ(static_cast<Index>(r.Samples.size()), target);
     Index members = 0;
     for (const auto& s : r.Samples)
@@ -193,7 +181,7 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
     {
-      const auto r = Simplify(box.Points, target, configurations[k]);
+      const auto r = SimplifyWith(box.Points, target, configurations[k]);
       ASSERT_EQ(static_cast<Index>(r.Samples.size()), target) << "configuration " << k;
       Index members = 0;
       for (const auto& s : r.Samples)
