@@ -177,8 +177,9 @@ int vtkKeyPointError::RequestData(
       inNormals && inNormals->GetNumberOfComponents() == 3 ? normals.data() : nullptr, options,
       this->GenerateCurvature ? this->CurvatureNeighbors : 0);
   }
-  const asmcore::Neighbors originalTree =
-    distributed ? asmcore::Neighbors() : asmcore::Neighbors(orig.Xyz, orig.Ids);
+  const asmcore::Neighbors originalTree = distributed
+    ? asmcore::Neighbors()
+    : asmcore::Neighbors(orig.Xyz, orig.Ids, asmvtk::SMPExecution(this, 0.0, 0.0));
   const asmcore::Comparison result = distributed
     ? shared.Figures
     : asmcore::CompareClouds(orig.Xyz, orig.Ids, originalTree, simp.Xyz, simp.Ids, options,

@@ -35,7 +35,7 @@ DistanceSummary Summarize(const std::vector<double>& d)
 std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, const std::vector<Index>& ids,
   const GridSpec& spec, const KeyPointRule& rule, const Execution& execution)
 {
-  const CellGrid grid = BuildCellGrid(xyz, ids, spec);
+  const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
   std::vector<std::vector<Eigen::Vector3d>> perCell(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
@@ -214,8 +214,8 @@ Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
   {
     return result;
   }
-  const Bounds original = ComputeBounds(xyz, ids);
-  const Bounds both = Union(original, ComputeBounds(sxyz, sids));
+  const Bounds original = ComputeBounds(xyz, ids, execution);
+  const Bounds both = Union(original, ComputeBounds(sxyz, sids, execution));
   result.Diagonal = original.Diagonal();
 
   // One grid for both clouds, sized as the simplifier sizes it: from the
@@ -224,7 +224,7 @@ Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
   {
     cellSize = AutomaticCellSize(xyz, ids, both,
-      static_cast<double>(sids.size()) / std::max(1.0, options.SamplesPerCell));
+      static_cast<double>(sids.size()) / std::max(1.0, options.SamplesPerCell), execution);
   }
   const GridSpec spec = GridSpec::Make(both, cellSize);
   result.CellSize = spec.CellSize;
@@ -251,8 +251,8 @@ Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
   std::vector<Index> keyIds, simplifiedKeyIds;
   const std::vector<double> keyXyz = Flatten(originalKeys, keyIds);
   const std::vector<double> simplifiedKeyXyz = Flatten(simplifiedKeys, simplifiedKeyIds);
-  const Neighbors simplifiedTree(sxyz, sids);
-  const Neighbors simplifiedKeyTree(simplifiedKeyXyz.data(), simplifiedKeyIds);
+  const Neighbors simplifiedTree(sxyz, sids, execution);
+  const Neighbors simplifiedKeyTree(simplifiedKeyXyz.data(), simplifiedKeyIds, execution);
   std::vector<double> keyErrors = NearestDistances(keyXyz.data(), keyIds,
     simplifiedKeys.empty() ? simplifiedTree : simplifiedKeyTree, execution);
   if (options.Measure == KeyPointDistance::Squared)
