@@ -4,7 +4,8 @@ parallel (each process makes its share, seeded by process id), simplified to
 
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \\
     mpiexec --oversubscribe -n 2 pvbatch --mpi Examples/Python/mpi_scaling.py \\
-      --points 50000000 [--fraction 0.01] [--always-distribute] [--mode paper] [--no-fill-holes]
+      --points 50000000 [--fraction 0.01] [--always-distribute] [--mode paper] [--no-fill-holes] \\
+      [--no-covering]
 
 PYTHONPATH must hold the build tree's asmvtk package (build/lib/python3/dist-packages).
 Prints, on process 0: processes, points, output points, wall time of the
@@ -33,6 +34,7 @@ parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
 parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
 parser.add_argument("--no-fill-holes", action="store_true")  # distributed runs switch it off anyway
+parser.add_argument("--no-covering", action="store_true")  # CoveringRounds 0, as distributed runs do
 args = parser.parse_args()
 
 controller = vtkMultiProcessController.GetGlobalController()
@@ -63,6 +65,8 @@ asm.SetAlwaysDistribute(args.always_distribute)
 asm.SetGenerateCurvature(not args.no_curvature)
 asm.SetMode(vtkASMSimplify.PAPER if args.mode == "paper" else vtkASMSimplify.FEATURE_PRESERVING)
 asm.SetFillHoles(not args.no_fill_holes)
+if args.no_covering:
+    asm.SetCoveringRounds(0)
 controller.Barrier()
 start, cpu_start = time.perf_counter(), time.process_time()
 asm.Update()
