@@ -6,6 +6,7 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkTable.h"
 
 #include <gtest/gtest.h>
@@ -136,6 +137,48 @@ TEST(KeyPointError, MeasuresAnASMSimplification)
     EXPECT_NE(out->GetPointData()->GetArray(name), nullptr) << name;
   }
   EXPECT_EQ(run.Messages->Warnings + run.Messages->Errors, 0);
+}
+
+// Every figure, the per-point Error and the curvature arrays are the same
+// with one and two threads (its grids, trees and queries run through
+// vtkSMPTools), on a cloud large enough for the parallel counting sorts to
+// cut it into several blocks.
+TEST(KeyPointError, SameFiguresAtOneAndTwoThreads)
+{
+  auto sphere = ToPolyData(Sphere(200000, 1.0, 3));
+  FilterRun asmRun;
+  asmRun.Filter->SetOutputFraction(0.05);
+  asmRun.Filter->SetGenerateCurvature(false);
+  vtkSmartPointer<vtkPolyData> simplified = asmRun.Execute(sphere);
+  ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
+  std::vector<std::vector<double>> outputs;
+  for (int threads : { 1, 2 })
+  {
+    vtkSMPTools::Initialize(threads);
+    ErrorRun run;
+    vtkPolyData* out = run.Execute(sphere, simplified);
+    auto* table = vtkTable::SafeDownCast(run.Filter->GetOutputDataObject(1));
+    ASSERT_NE(table, nullptr);
+    std::vector<double> flat;
+    for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
+    {
+      flat.push_back(table->GetColumn(c)->GetVariantValue(0).ToDouble());
+    }
+    for (const char* name : { "Error", "MeanCurvature", "SurfaceVariation" })
+    {
+      vtkDataArray* a = out->GetPointData()->GetArray(name);
+      ASSERT_NE(a, nullptr) << name;
+      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+      {
+        flat.push_back(a->GetTuple1(i));
+      }
+    }
+    outputs.push_back(flat);
+  }
+  vtkSMPTools::Initialize(0);
+  vtkSMPTools::SetBackend("Sequential");
+  ASSERT_GT(outputs[0].size(), 3 * 10000u);
+  EXPECT_EQ(outputs[0], outputs[1]);
 }
 
 TEST(KeyPointError, BadInputs)
