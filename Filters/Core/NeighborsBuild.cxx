@@ -2,6 +2,7 @@
 // The build of the kd-tree of Neighbors.h (the queries are in Neighbors.cxx).
 #include "Neighbors.h"
 
+#include "Grid.h"
 #include "GroupBy.h"
 
 #include <algorithm>
@@ -254,23 +255,10 @@ void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Ex
   }
   Task root;
   root.End = n;
-  {
-    root.MinId = std::numeric_limits<Index>::max();
-    for (int a = 0; a < 3; ++a)
-    {
-      root.Lo[a] = std::numeric_limits<double>::infinity();
-      root.Hi[a] = -std::numeric_limits<double>::infinity();
-    }
-    for (Index id : ids)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        root.Lo[a] = std::min(root.Lo[a], xyz[3 * id + a]);
-        root.Hi[a] = std::max(root.Hi[a], xyz[3 * id + a]);
-      }
-      root.MinId = std::min(root.MinId, id);
-    }
-  }
+  const Bounds bounds = ComputeBounds(xyz, ids, execution);
+  std::copy(bounds.Min, bounds.Min + 3, root.Lo);
+  std::copy(bounds.Max, bounds.Max + 3, root.Hi);
+  root.MinId = *std::min_element(ids.begin(), ids.end());
   std::copy(root.Lo, root.Lo + 3, this->BoxMin);
   std::copy(root.Hi, root.Hi + 3, this->BoxMax);
 
