@@ -6,8 +6,11 @@
 
 #include "Core/CellFrame.h"
 #include "Core/Grid.h"
+#include "Core/Simplify.h"
 #include "TestHelpers.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -57,6 +60,21 @@ struct GlobalCells
     return byKey;
   }
 };
+/// (x, y, z, then what `fields` gives) of every sample of `r`, sorted: a
+/// result compared whatever the order its samples come in.
+template <std::size_t N, typename Fields>
+std::vector<std::array<double, N>> SortedSamples(const asmcore::SimplifyResult& r, Fields fields)
+{
+  std::vector<std::array<double, N>> s;
+  for (const asmcore::Sample& sample : r.Samples)
+  {
+    std::array<double, N> row{ sample.Position[0], sample.Position[1], sample.Position[2] };
+    fields(sample, row.data() + 3);
+    s.push_back(row);
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
 } // namespace asmtest
 
 #endif

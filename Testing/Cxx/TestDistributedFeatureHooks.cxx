@@ -28,14 +28,10 @@ using asmcore::Index;
 // (x, y, z, cluster size, key flag) of every sample, sorted.
 std::vector<std::array<double, 5>> Sorted(const asmcore::SimplifyResult& r)
 {
-  std::vector<std::array<double, 5>> s;
-  for (const auto& sample : r.Samples)
-  {
-    s.push_back({ sample.Position[0], sample.Position[1], sample.Position[2],
-      static_cast<double>(sample.ClusterSize), sample.Key ? 1.0 : 0.0 });
-  }
-  std::sort(s.begin(), s.end());
-  return s;
+  return asmtest::SortedSamples<5>(r, [](const asmcore::Sample& s, double* more) {
+    more[0] = static_cast<double>(s.ClusterSize);
+    more[1] = s.Key ? 1.0 : 0.0;
+  });
 }
 
 asmcore::SimplifyParameters FeatureParameters()

@@ -23,14 +23,8 @@ using asmcore::Index;
 
 std::vector<std::array<double, 4>> Sorted(const asmcore::SimplifyResult& r)
 {
-  std::vector<std::array<double, 4>> s;
-  for (const auto& sample : r.Samples)
-  {
-    s.push_back({ sample.Position[0], sample.Position[1], sample.Position[2],
-      static_cast<double>(sample.CoreSize) });
-  }
-  std::sort(s.begin(), s.end());
-  return s;
+  return asmtest::SortedSamples<4>(
+    r, [](const asmcore::Sample& s, double* more) { more[0] = static_cast<double>(s.CoreSize); });
 }
 
 void CheckSplit(asmcore::WeightMode weight)
