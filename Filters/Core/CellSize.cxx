@@ -132,7 +132,8 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   const Index n = static_cast<Index>(ids.size());
   const Index blocks = BlockCount(n, 64, 1 << 15);
   std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
-  std::vector<unsigned char> picked(static_cast<std::size_t>(n));
+  std::vector<unsigned char> picked;
+  ResizeLarge(picked, static_cast<std::size_t>(n));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -151,7 +152,7 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   {
     start[k + 1] += start[k];
   }
-  subset.resize(static_cast<std::size_t>(3 * start[blocks]));
+  ResizeLarge(subset, static_cast<std::size_t>(3 * start[blocks]));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -182,7 +183,8 @@ double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bo
   {
     return 0.0;
   }
-  std::vector<Index> subsetIds(subset.size() / 3);
+  std::vector<Index> subsetIds;
+  ResizeLarge(subsetIds, subset.size() / 3);
   std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));
