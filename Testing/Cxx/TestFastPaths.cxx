@@ -409,22 +409,3 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
     ASSERT_EQ(std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid)), plane[i]) << i;
   }
 }
-
-// ResizeLarge is vector::resize: the old elements are kept (moved), the new
-// ones value-initialised, whether or not the new storage is large enough to
-// be advised for huge pages (16 MB here).
-TEST(FastPaths, ResizeLargeIsResize)
-{
-  for (const std::size_t n : { std::size_t(5), std::size_t(1) << 21 })
-  {
-    std::vector<Index> v = { 7, -3, 11 };
-    asmcore::ResizeLarge(v, n);
-    ASSERT_EQ(v.size(), n);
-    EXPECT_EQ(v[0], 7);
-    EXPECT_EQ(v[1], -3);
-    EXPECT_EQ(v[2], 11);
-    EXPECT_EQ(std::count(v.begin() + 3, v.end(), Index(0)), static_cast<std::ptrdiff_t>(n - 3));
-    asmcore::ResizeLarge(v, 2); // shrinking keeps the first ones
-    EXPECT_EQ(v, (std::vector<Index>{ 7, -3 }));
-  }
-}
