@@ -132,8 +132,7 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   const Index n = static_cast<Index>(ids.size());
   const Index blocks = BlockCount(n, 64, 1 << 15);
   std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
-  std::vector<unsigned char> picked;
-  ResizeLarge(picked, static_cast<std::size_t>(n));
+  std::vector<unsigned char> picked(static_cast<std::size_t>(n));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -152,7 +151,7 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   {
     start[k + 1] += start[k];
   }
-  ResizeLarge(subset, static_cast<std::size_t>(3 * start[blocks]));
+  subset.resize(static_cast<std::size_t>(3 * start[blocks]));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -183,8 +182,7 @@ double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bo
   {
     return 0.0;
   }
-  std::vector<Index> subsetIds;
-  ResizeLarge(subsetIds, subset.size() / 3);
+  std::vector<Index> subsetIds(subset.size() / 3);
   std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));

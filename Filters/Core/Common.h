@@ -13,15 +13,9 @@
 
 #include "vtkASMFiltersModule.h" // For export macro
 
-#include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <iterator>
 #include <vector>
-
-#if defined(__linux__)
-#include <sys/mman.h> // madvise
-#endif
 
 namespace asmcore
 {
@@ -59,48 +53,6 @@ struct Execution
   }
   bool Report(double fraction) const { return this->Progress ? this->Progress(fraction) : false; }
 };
-
-/// Asks the kernel to back [data, data + bytes) with huge pages where it can
-/// (Linux with transparent huge pages in "madvise" mode; a hint, no effect
-/// elsewhere). Call before the memory is first written: an array of N
-/// points then costs N / 2 M page faults instead of N / 4 k, each of which
-/// has the kernel clear and account a page (about a tenth of the paper
-/// mode's time at 4 M points).
-inline void AdviseHugePages(void* data, std::size_t bytes)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const std::uintptr_t huge = std::uintptr_t(1) << 21;
-  if (bytes < 4 * huge)
-  {
-    return;
-  }
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
-  if (end > begin)
-  {
-    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  }
-#else
-  (void)data;
-  (void)bytes;
-#endif
-}
-
-/// v.resize(n), with new storage (when it grows) advised for huge pages
-/// before its first write: for the arrays of one entry per point.
-template <typename T>
-void ResizeLarge(std::vector<T>& v, std::size_t n)
-{
-  if (v.capacity() < n)
-  {
-    std::vector<T> grown;
-    grown.reserve(n);
-    AdviseHugePages(grown.data(), n * sizeof(T));
-    grown.insert(grown.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
-    v.swap(grown);
-  }
-  v.resize(n);
-}
 
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);

@@ -171,8 +171,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
   // Every later pass reads the points cell by cell: a copy in cell order
   // (slot i holds point original.Order[i]) keeps those reads sequential.
-  std::vector<double> cellOrdered;
-  ResizeLarge(cellOrdered, static_cast<std::size_t>(3 * total));
+  std::vector<double> cellOrdered(static_cast<std::size_t>(3 * total));
   execution.Run(0, total, [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
     {
@@ -184,7 +183,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   grid.Spec = original.Spec;
   grid.CellStart = original.CellStart;
   grid.CellKey = original.CellKey;
-  ResizeLarge(grid.Order, static_cast<std::size_t>(total));
+  grid.Order.resize(static_cast<std::size_t>(total));
   std::iota(grid.Order.begin(), grid.Order.end(), Index(0));
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
@@ -367,7 +366,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   {
     ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
   }
-  ResizeLarge(result.Samples, static_cast<std::size_t>(count));
+  result.Samples.resize(static_cast<std::size_t>(count));
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {

@@ -204,8 +204,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
   const OccupancyBitmap& bitmap = marks.Bitmap;
   std::vector<std::uint64_t>& cell = marks.Cell;
   // The cells in key order, and each point's dense cell number.
-  std::vector<Index> rank;
-  ResizeLarge(rank, static_cast<std::size_t>(bitmap.Words) + 1);
+  std::vector<Index> rank(static_cast<std::size_t>(bitmap.Words) + 1, 0);
   for (Index w = 0; w < bitmap.Words; ++w)
   {
     rank[w + 1] = rank[w] + PopCount(bitmap.Word(w));

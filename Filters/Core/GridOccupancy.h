@@ -328,7 +328,7 @@ struct CellMarks
       return false;
     }
     this->Spec = spec;
-    ResizeLarge(this->Cell, static_cast<std::size_t>(n));
+    this->Cell.resize(static_cast<std::size_t>(n));
     MarkCells(xyz, ids, spec, this->Bitmap, this->Cell.data(), execution);
     this->Valid = true;
     return true;

@@ -63,7 +63,7 @@ void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Inde
     }
   }
   start[keys] = running;
-  ResizeLarge(out, static_cast<std::size_t>(running));
+  out.resize(static_cast<std::size_t>(running));
   eachItem([&](Index b, Index i, Index k) { out[static_cast<std::size_t>(offset[b * keys + k]++)] = value(i); });
 }
 } // namespace asmcore

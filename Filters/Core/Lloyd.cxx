@@ -137,8 +137,8 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   const SampleSet& samples, std::vector<Index>& assign, std::vector<double>& distance2,
   const Execution& execution)
 {
-  ResizeLarge(assign, grid.Order.size());
-  ResizeLarge(distance2, grid.Order.size());
+  assign.resize(grid.Order.size());
+  distance2.resize(grid.Order.size());
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)

@@ -290,7 +290,7 @@ void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Ex
   }
   else
   {
-    ResizeLarge(this->Points, ids.size());
+    this->Points.resize(ids.size());
     execution.Run(0, n, [&](Index b, Index e) {
       for (Index i = b; i < e; ++i)
       {

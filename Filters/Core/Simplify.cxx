@@ -209,8 +209,7 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   {
     begin[s + 1] = begin[s] + result.Samples[s].ClusterSize + (extra[s + 1] - extra[s]);
   }
-  std::vector<Index> members;
-  ResizeLarge(members, static_cast<std::size_t>(begin[samples]));
+  std::vector<Index> members(static_cast<std::size_t>(begin[samples]));
   execution.Run(0, samples, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
@@ -407,7 +406,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   {
     sampleStart[c + 1] = sampleStart[c] + budget[c];
   }
-  ResizeLarge(result.Samples, static_cast<std::size_t>(sampleStart[cells]));
+  result.Samples.resize(static_cast<std::size_t>(sampleStart[cells]));
   // The members start as the grid's order (the points cell by cell): each
   // cell rewrites its own range, from a copy of it, grouped by sample.
   result.Members = std::move(grid.Order);
