@@ -180,6 +180,8 @@ int vtkASMSimplify::RequestData(
   // Covering refinement moves samples across the halo: not distributed.
   parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
   parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
+  // The bound is the largest hole of the whole cloud: not distributed.
+  parameters.BoundSnappedHoles = distributed ? false : this->BoundSnappedHoles;
   vtkPointData* inPD = input->GetPointData();
   asmvtk::SimplifyShare share;
   if (distributed)
@@ -378,6 +380,7 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FeatureSamplesPerCell: " << this->FeatureSamplesPerCell << "\n";
   os << indent << "VariationBudget: " << this->VariationBudget << "\n";
   os << indent << "CoveringRounds: " << this->CoveringRounds << "\n";
+  os << indent << "BoundSnappedHoles: " << this->BoundSnappedHoles << "\n";
   os << indent << "SparseCellKeyPoints: " << this->SparseCellKeyPoints << "\n";
   os << indent << "TargetMode: "
      << (this->TargetMode == OUTPUT_FRACTION ? "OutputFraction" : "NumberOfOutputPoints") << "\n";

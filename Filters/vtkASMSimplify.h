@@ -71,8 +71,9 @@
  * CrossCellIterations); samples placed on input points (InputPointSamples);
  * a bounded hole-filling pass (FillHoles, HoleFillFraction); finer cells
  * (FeatureSamplesPerCell) whose budget follows the surface variation
- * (VariationBudget); and input-point samples that cover their clusters
- * (CoveringRounds). In this
+ * (VariationBudget); input-point samples that cover their clusters
+ * (CoveringRounds); and a bound on the largest hole that snapping to input
+ * points may leave (BoundSnappedHoles). In this
  * mode a cluster is the set of input points nearest a sample, the count is
  * still exactly N_s, and AKPE/MKPE are 0 when the key points sit on their
  * extreme points. The options other than Mode are ignored in PAPER mode.
@@ -89,8 +90,8 @@
  * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
- * MPI launcher) started it, or with AlwaysDistribute; FillHoles and
- * CoveringRounds (FEATURE_PRESERVING) are global and switched off in
+ * MPI launcher) started it, or with AlwaysDistribute; FillHoles,
+ * CoveringRounds and BoundSnappedHoles (FEATURE_PRESERVING) are global and switched off in
  * distributed runs (FillHoles with a warning). The serial path gives the same points too when FillHoles is
  * off. Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
@@ -247,7 +248,8 @@ public:
    * FEATURE_PRESERVING: each sample is the input point nearest its cluster's
    * centre (a measured point on the surface, not a centroid inside its
    * curvature); the input arrays are still averaged over the cluster unless
-   * SnapToInputPoints is on; default on.
+   * SnapToInputPoints is on; default on. With BoundSnappedHoles, a few
+   * samples move off their input point (SnapToInputPoints: none does).
    */
   vtkSetMacro(InputPointSamples, bool);
   vtkGetMacro(InputPointSamples, bool);
@@ -325,6 +327,23 @@ public:
   vtkSetMacro(SparseCellKeyPoints, bool);
   vtkGetMacro(SparseCellKeyPoints, bool);
   vtkBooleanMacro(SparseCellKeyPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING, with InputPointSamples (not SnapToInputPoints): the
+   * largest hole is bounded by what minimax centres would leave. A sample
+   * whose cluster reaches farther from its input point than the largest
+   * hole the clusters would leave with their samples at (about) their
+   * minimax centres (key samples where they are) moves from its input point
+   * towards that centre, just far enough to reach no farther; default on.
+   * Only those samples (typically fewer than 1 %) leave the input points;
+   * their vtkOriginalPointIds is still the input point they left. Global
+   * like FillHoles: distributed runs switch it off.
+   */
+  vtkSetMacro(BoundSnappedHoles, bool);
+  vtkGetMacro(BoundSnappedHoles, bool);
+  vtkBooleanMacro(BoundSnappedHoles, bool);
   ///@}
 
   ///@{
@@ -529,6 +548,7 @@ protected:
   double VariationBudget = 0.5;
   int CoveringRounds = 2;
   bool SparseCellKeyPoints = true;
+  bool BoundSnappedHoles = true;
   int TargetMode = OUTPUT_FRACTION;
   double OutputFraction = 0.05;
   vtkIdType NumberOfOutputPoints = 1000;

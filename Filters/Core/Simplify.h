@@ -56,7 +56,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   int LloydIterations = 4;       ///< inside a cell; 0: median splits of the non-key points
   int CrossCellIterations = 1;   ///< across cell borders, clamped to MaxCrossCellIterations
   double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
-  bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre
+  bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre (see BoundSnappedHoles)
   bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
   int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step
@@ -76,6 +76,13 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// point (a spike tip alone in its cell); needs ValidateKeyPoints and
   /// InPlaneKeyPoints.
   bool SparseCellKeyPoints = true;
+  /// With InputPointSamples (not Snap): a sample whose cluster reaches
+  /// farther from it than the largest hole the clusters would leave with
+  /// their samples at (about) their minimax centres (key samples where they
+  /// are) moves towards that centre, just far enough: snapping never makes
+  /// the largest hole larger, and only those samples (typically < 1 %) leave
+  /// the input points. Global, like FillHoles: not for distributed runs.
+  bool BoundSnappedHoles = true;
 
   /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.
   /// Every process calls Simplify on the points of the cells it owns plus a

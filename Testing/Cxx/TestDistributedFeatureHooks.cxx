@@ -40,6 +40,7 @@ asmcore::SimplifyParameters FeatureParameters()
   p.NumberOfSamples = 4000;
   p.SamplesPerCell = 2.0;
   p.FillHoles = false; // global: off in distributed runs
+  p.BoundSnappedHoles = false; // likewise
   return p;
 }
 

@@ -2,8 +2,9 @@
 // Tests of the quality options of the feature-preserving mode (issue 7):
 // covering refinement (CoveringRounds), the budget that follows the surface
 // variation (VariationBudget) on finer cells (FeatureSamplesPerCell), tips
-// alone in sparse cells (SparseCellKeyPoints), and the order-independent
-// choice of a sample's input point.
+// alone in sparse cells (SparseCellKeyPoints), the bound on the holes that
+// snapping leaves (BoundSnappedHoles), and the order-independent choice of a
+// sample's input point.
 #include "Core/Simplify.h"
 
 #include "FeatureShapes.h"
@@ -62,6 +63,53 @@ std::set<std::array<double, 3>> Positions(const asmcore::SimplifyResult& r)
 }
 } // namespace
 
+TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
+{
+  // 20 % of a sphere and of a bumpy box (keys), with the covering rounds
+  // and hole filling on (the defaults).
+  for (const Cloud& cloud : { Sphere(6000, 1.0, 3), Box(20000).Points })
+  {
+    const Index n = static_cast<Index>(cloud.size() / 3), target = n / 5;
+    auto run = [&](bool bound) {
+      return SimplifyWith(cloud, target, [bound](auto& p) { p.BoundSnappedHoles = bound; });
+    };
+    const auto off = run(false), on = run(true);
+    ASSERT_EQ(static_cast<Index>(on.Samples.size()), target);
+    const double holeOff = LargestHole(cloud, off), holeOn = LargestHole(cloud, on);
+    EXPECT_LT(holeOn, holeOff) << "the bound shrinks the largest hole";
+    // Off: every sample an input point. On: the same samples, but those
+    // whose cluster reached past the bound left their input point (their
+    // representative), by less than the reach.
+    Index moved = 0;
+    ASSERT_EQ(on.Samples.size(), off.Samples.size());
+    for (std::size_t k = 0; k < on.Samples.size(); ++k)
+    {
+      const auto& a = off.Samples[k];
+      const auto& b = on.Samples[k];
+      ASSERT_TRUE(IsInputPoint(cloud, a.Position));
+      EXPECT_EQ(a.Representative, b.Representative);
+      EXPECT_EQ(a.Key, b.Key);
+      if (!std::equal(a.Position, a.Position + 3, b.Position))
+      {
+        ++moved;
+        EXPECT_FALSE(b.Key) << "key samples stay on their extreme point";
+        EXPECT_LT(std::hypot(a.Position[0] - b.Position[0], a.Position[1] - b.Position[1],
+                    a.Position[2] - b.Position[2]),
+          holeOff);
+      }
+    }
+    EXPECT_GT(moved, 0);
+    EXPECT_LT(moved, target / 20) << "only the widest clusters' samples move";
+    // SnapToInputPoints is the user's demand for input points: nothing moves.
+    const auto snapped =
+      SimplifyWith(cloud, target, [](auto& p) { p.Snap = true; p.BoundSnappedHoles = true; });
+    for (const auto& s : snapped.Samples)
+    {
+      EXPECT_TRUE(IsInputPoint(cloud, s.Position));
+    }
+  }
+}
+
 TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
 {
   // 20 % of a sphere: five points per sample, where the input point nearest
@@ -72,7 +120,8 @@ TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
   auto rounds = [&](int k) {
     return SimplifyWith(sphere.Points, target, [k](auto& p) {
       p.CoveringRounds = k;
-      p.FillHoles = false; // the refinement alone
+      p.FillHoles = false;          // the refinement alone
+      p.BoundSnappedHoles = false;
     });
   };
   const auto none = rounds(0), one = rounds(1), two = rounds(2), four = rounds(4);

@@ -176,7 +176,8 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.FillHoles = false; }, [](auto& p) { p.Snap = true; },
     [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
     [](auto& p) { p.FeatureSamplesPerCell = 8.0; }, [](auto& p) { p.VariationBudget = 0.0; },
-    [](auto& p) { p.CoveringRounds = 0; }, [](auto& p) { p.SparseCellKeyPoints = false; } };
+    [](auto& p) { p.CoveringRounds = 0; }, [](auto& p) { p.SparseCellKeyPoints = false; },
+    [](auto& p) { p.BoundSnappedHoles = false; } };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
@@ -235,6 +236,7 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "FeatureSamplesPerCell", [](vtkASMSimplify* f) { f->SetFeatureSamplesPerCell(8.0); } },
     { "VariationBudget", [](vtkASMSimplify* f) { f->SetVariationBudget(0.0); } },
     { "CoveringRounds", [](vtkASMSimplify* f) { f->SetCoveringRounds(0); } },
+    { "BoundSnappedHolesOff", [](vtkASMSimplify* f) { f->BoundSnappedHolesOff(); } },
     // (SparseCellKeyPoints changes nothing on the fandisk: no tip alone in a
     // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)
     { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
@@ -289,6 +291,7 @@ TEST(FeaturePreserving, DefaultModeIsFeaturePreserving)
   EXPECT_EQ(filter->GetVariationBudget(), core.VariationBudget);
   EXPECT_EQ(filter->GetCoveringRounds(), core.CoveringRounds);
   EXPECT_EQ(filter->GetSparseCellKeyPoints(), core.SparseCellKeyPoints);
+  EXPECT_EQ(filter->GetBoundSnappedHoles(), core.BoundSnappedHoles);
   EXPECT_TRUE(filter->GetValidateKeyPoints());
   EXPECT_EQ(filter->GetBudgetExponent(), 0.5);
   filter->SetModeToPaper();
@@ -315,6 +318,7 @@ TEST(FeaturePreserving, PropagatesAttributes)
   {
     FilterRun run;
     run.Filter->SetInputPointSamples(inputPoints);
+    run.Filter->BoundSnappedHolesOff(); // every sample an input point (see FeatureCoverage)
     run.Filter->GenerateCurvatureOff();
     run.Filter->SetOutputFraction(0.1);
     vtkPolyData* out = run.Execute(input);

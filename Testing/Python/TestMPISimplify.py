@@ -72,6 +72,7 @@ else:
     if SERIAL:
         asm.FillHolesOff()
         asm.SetCoveringRounds(0)  # global too: distributed runs switch it off
+        asm.BoundSnappedHolesOff()  # likewise
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which

@@ -49,6 +49,7 @@ expected_defaults = {
     "VariationBudget": 0.5,
     "CoveringRounds": 2,
     "SparseCellKeyPoints": 1,
+    "BoundSnappedHoles": 1,
     # Parallel (MPI) runs.
     "AlwaysDistribute": 0,
 }
