@@ -337,7 +337,7 @@ public:
    * hole the clusters would leave with their samples at (about) their
    * minimax centres (key samples where they are) moves from its input point
    * towards that centre, just far enough to reach no farther; default on.
-   * Only those samples (typically fewer than 1 %) leave the input points;
+   * Only those samples (at 20 %: 0.1-6 %) leave the input points;
    * their vtkOriginalPointIds is still the input point they left. Global
    * like FillHoles: distributed runs switch it off.
    */

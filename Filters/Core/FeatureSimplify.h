@@ -24,7 +24,12 @@
  *     borders; optionally (FillHoles) a bounded hole-filling pass; with
  *     input-point samples, CoveringRounds rounds of covering refinement
  *     (Covering.h); then every point joins its nearest sample (the sample's
- *     cluster).
+ *     cluster);
+ *  6. output: each free sample is the input point nearest its position
+ *     (InputPointSamples) or its cluster's centroid; with BoundSnappedHoles,
+ *     the input-point samples whose cluster reaches past the largest hole
+ *     that (approximate) minimax centres would leave move towards that
+ *     centre, just far enough.
  *
  * Locality, for distributed runs: every step after the budget reads one ring
  * of cells, so a cell's samples depend only on the points within
@@ -35,8 +40,9 @@
  * rule) is global: a distributed driver computes it over all cells and
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
- * samples are output (vtkASMDistributed.h). The hole filling and the
- * covering refinement are global and are not supported in distributed runs.
+ * samples are output (vtkASMDistributed.h). The hole filling, the covering
+ * refinement and the snapped-hole bound are global and are not supported in
+ * distributed runs.
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h
