@@ -332,7 +332,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
       std::copy(xyz + 3 * original.Order[i], xyz + 3 * original.Order[i] + 3, &cellOrdered[3 * i]);
     }
   });
-  const double* P = cellOrdered.data();
+  const double* P = cellOrdered.data(); // released before the output
   CellGrid grid;
   grid.Spec = original.Spec;
   grid.CellStart = original.CellStart;
@@ -500,11 +500,19 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     }
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
+  // The cell-ordered copy, its identity order and the distances are done
+  // with: released before the members and the samples are laid out (the
+  // peak memory of a run).
+  std::vector<double>().swap(distance2);
+  std::vector<double>().swap(cellOrdered);
+  std::vector<Index>().swap(grid.Order);
+  P = nullptr;
   // The members of each sample, in slot order.
   std::vector<Index> memberStart;
   GroupBy(
     total, count, [&](Index i) { return assign[i]; }, [&](Index i) { return original.Order[i]; },
     memberStart, result.Members, execution);
+  std::vector<Index>().swap(assign);
   if (abort(0.9))
   {
     return result;
