@@ -195,6 +195,7 @@ int vtkASMSimplify::RequestData(
     }
     xyz = share.Cloud.Xyz.data();
     ids = share.Cloud.Ids;
+    coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
     parameters.Grid = &share.Grid;
@@ -268,6 +269,15 @@ int vtkASMSimplify::RequestData(
                     << result.CellSize << ".");
   }
   const auto count = static_cast<vtkIdType>(result.Samples.size());
+  // From here on the coordinates and ids serve the curvature estimates only:
+  // released before the output is laid out when those are off.
+  normalCopy.reset();
+  if (!this->GenerateCurvature)
+  {
+    coordinateCopy.reset();
+    std::vector<Index>().swap(ids);
+    xyz = nullptr;
+  }
 
   // Points and one vertex cell each.
   vtkNew<vtkPoints> points;
