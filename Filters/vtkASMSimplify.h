@@ -294,7 +294,7 @@ public:
    * FEATURE_PRESERVING: k of the budget weight w_c = 1 + k * sigma_c /
    * mean(sigma), sigma the cell's surface variation (unitless, >= 0; 0: the
    * same weight for every cell): bent and creased cells get more samples;
-   * default 0.5. With WeightMode SURFACE_VARIATION_WEIGHT, CurvatureWeight is
+   * default 1. With WeightMode SURFACE_VARIATION_WEIGHT, CurvatureWeight is
    * k instead.
    */
   vtkSetClampMacro(VariationBudget, double, 0.0, VTK_DOUBLE_MAX);
@@ -545,7 +545,7 @@ protected:
   bool FillHoles = true;
   double HoleFillFraction = 0.02;
   double FeatureSamplesPerCell = 4.0;
-  double VariationBudget = 0.5;
+  double VariationBudget = 1.0;
   int CoveringRounds = 2;
   bool SparseCellKeyPoints = true;
   bool BoundSnappedHoles = true;

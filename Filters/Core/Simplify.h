@@ -66,7 +66,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// k of the budget weight w_c = 1 + k * sigma_c / mean(sigma) (surface
   /// variation, unitless) when Weight is Uniform; 0: w_c = 1. With Weight =
   /// SurfaceVariation, CurvatureWeight is k as in Paper mode.
-  double VariationBudget = 0.5;
+  double VariationBudget = 1.0;
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
   /// centre. Global, like FillHoles: not for distributed runs.

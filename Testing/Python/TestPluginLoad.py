@@ -46,7 +46,7 @@ expected_defaults = {
     "FillHoles": 1,
     "HoleFillFraction": 0.02,
     "FeatureSamplesPerCell": 4.0,
-    "VariationBudget": 0.5,
+    "VariationBudget": 1.0,
     "CoveringRounds": 2,
     "SparseCellKeyPoints": 1,
     "BoundSnappedHoles": 1,
