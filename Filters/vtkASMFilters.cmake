@@ -32,6 +32,7 @@ set(ASM_FILTERS_CORE
   Lloyd
   HoleFilling
   Covering
+  SnappedHoles
   FeatureSimplify
   Neighbors
   Curvature

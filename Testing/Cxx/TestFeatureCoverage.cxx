@@ -6,6 +6,7 @@
 // snapping leaves (BoundSnappedHoles), and the order-independent choice of a
 // sample's input point.
 #include "Core/Simplify.h"
+#include "Core/SnappedHoles.h"
 
 #include "FeatureShapes.h"
 
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -62,6 +64,40 @@ std::set<std::array<double, 3>> Positions(const asmcore::SimplifyResult& r)
   return out;
 }
 } // namespace
+
+TEST(FeatureCoverage, MinimaxCentreIsNearTheSmallestBall)
+{
+  // Known smallest balls: two points (their midpoint), a square's corners
+  // (its centre), a regular tetrahedron (its circumcentre), each started
+  // from a vertex; the radius returned is the reach from the centre
+  // returned, at least the exact one and within 5 % of it.
+  const double t = 1.0 / std::sqrt(2.0);
+  const std::vector<std::pair<Cloud, double>> cases = {
+    { { 0, 0, 0, 2, 0, 0 }, 1.0 },
+    { { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 }, std::sqrt(2.0) },
+    { { 1, 0, -t, -1, 0, -t, 0, 1, t, 0, -1, t }, std::sqrt(6.0) / 2.0 } };
+  for (const auto& [points, exact] : cases)
+  {
+    const Index n = static_cast<Index>(points.size() / 3);
+    std::vector<Index> ids(static_cast<std::size_t>(n));
+    std::iota(ids.begin(), ids.end(), Index(0));
+    double centre[3];
+    const double r2 = asmcore::MinimaxCentre(points.data(), ids.data(), n, points.data(), centre);
+    double reach = 0.0;
+    for (Index i = 0; i < n; ++i)
+    {
+      const double* p = points.data() + 3 * i;
+      reach = std::max(reach, std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]));
+    }
+    EXPECT_NEAR(std::sqrt(r2), reach, 1e-12);
+    EXPECT_GE(reach, exact * (1.0 - 1e-12));
+    EXPECT_LE(reach, exact * 1.05) << n << " points";
+  }
+  double centre[3];
+  const double start[3] = { 1, 2, 3 };
+  EXPECT_EQ(asmcore::MinimaxCentre(nullptr, nullptr, 0, start, centre), 0.0);
+  EXPECT_EQ(centre[2], 3.0);
+}
 
 TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
 {

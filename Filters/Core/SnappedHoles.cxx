@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SnappedHoles.h"
+
+#include "Lloyd.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <utility>
+
+namespace asmcore
+{
+double MinimaxCentre(
+  const double* xyz, const Index* first, Index n, const double start[3], double centre[3])
+{
+  constexpr int Steps = 64;
+  double c[3] = { start[0], start[1], start[2] };
+  if (n <= 0)
+  {
+    std::copy_n(c, 3, centre);
+    return 0.0;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (int step = 1; step <= Steps; ++step)
+  {
+    Index far = 0;
+    double farD = -1.0;
+    for (Index m = 0; m < n; ++m)
+    {
+      const double d = SquaredDistance(xyz + 3 * first[m], c);
+      if (d > farD)
+      {
+        farD = d;
+        far = m;
+      }
+    }
+    if (farD < best)
+    {
+      best = farD;
+      std::copy_n(c, 3, centre);
+    }
+    const double* f = xyz + 3 * first[far];
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] += (f[a] - c[a]) / static_cast<double>(step + 1);
+    }
+  }
+  return best;
+}
+
+void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, SimplifyResult& result,
+  const Execution& execution)
+{
+  const Index count = static_cast<Index>(result.Samples.size());
+  std::vector<double> reach(static_cast<std::size_t>(count), 0.0); // squared, from the sample
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      const Sample& sample = result.Samples[s];
+      const Index* first = result.Members.data() + sample.MemberBegin;
+      for (Index m = 0; m < sample.ClusterSize; ++m)
+      {
+        reach[s] = std::max(reach[s], SquaredDistance(xyz + 3 * first[m], sample.Position));
+      }
+    }
+  });
+  double limit = 0.0; // squared largest hole so far
+  std::vector<Index> order;
+  for (Index s = 0; s < count; ++s)
+  {
+    if (snapped[s])
+    {
+      order.push_back(s);
+    }
+    else
+    {
+      limit = std::max(limit, reach[s]);
+    }
+  }
+  // Only those that reach past the fixed samples can move or raise the bound.
+  order.erase(std::remove_if(order.begin(), order.end(), [&](Index s) { return !(reach[s] > limit); }),
+    order.end());
+  std::sort(order.begin(), order.end(),
+    [&](Index a, Index b) { return reach[a] > reach[b] || (reach[a] == reach[b] && a < b); });
+  // Widest first, in batches whose centres are computed in parallel; the
+  // bound takes them in order, up to the first cluster within it.
+  const Index batch = 256;
+  std::vector<double> centre(static_cast<std::size_t>(3 * batch)), radius(static_cast<std::size_t>(batch));
+  std::vector<std::pair<Index, std::array<double, 3>>> moves;
+  bool done = false;
+  for (Index begin = 0; begin < static_cast<Index>(order.size()) && !done; begin += batch)
+  {
+    const Index end = std::min<Index>(static_cast<Index>(order.size()), begin + batch);
+    if (!(reach[order[begin]] > limit))
+    {
+      break;
+    }
+    execution.Run(begin, end, [&](Index b, Index e) {
+      for (Index k = b; k < e; ++k)
+      {
+        const Sample& sample = result.Samples[order[k]];
+        radius[k - begin] = MinimaxCentre(xyz, result.Members.data() + sample.MemberBegin,
+          sample.ClusterSize, sample.Position, centre.data() + 3 * (k - begin));
+      }
+    });
+    for (Index k = begin; k < end; ++k)
+    {
+      if (!(reach[order[k]] > limit))
+      {
+        done = true;
+        break;
+      }
+      limit = std::max(limit, radius[k - begin]);
+      const double* c = centre.data() + 3 * (k - begin);
+      moves.push_back({ order[k], { c[0], c[1], c[2] } });
+    }
+  }
+  // Each of those moves from its input point towards its centre only as far
+  // as the bound needs (the reach along the segment is convex: bisection).
+  execution.Run(0, static_cast<Index>(moves.size()), [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k)
+    {
+      const Index s = moves[k].first;
+      if (!(reach[s] > limit))
+      {
+        continue;
+      }
+      Sample& sample = result.Samples[s];
+      const Index* first = result.Members.data() + sample.MemberBegin;
+      const double* from = sample.Position;
+      const double* to = moves[k].second.data();
+      auto at = [&](double t, double p[3]) {
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = from[a] + t * (to[a] - from[a]);
+        }
+      };
+      auto reachAt = [&](double t) {
+        double p[3], r = 0.0;
+        at(t, p);
+        for (Index m = 0; m < sample.ClusterSize; ++m)
+        {
+          r = std::max(r, SquaredDistance(xyz + 3 * first[m], p));
+        }
+        return r;
+      };
+      double lo = 0.0, hi = 1.0; // reach above the bound at lo, within it at hi
+      for (int step = 0; step < 20; ++step)
+      {
+        const double mid = 0.5 * (lo + hi);
+        (reachAt(mid) > limit ? lo : hi) = mid;
+      }
+      double p[3];
+      at(hi, p);
+      std::copy_n(p, 3, sample.Position);
+    }
+  });
+}
+} // namespace asmcore
