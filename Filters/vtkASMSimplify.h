@@ -91,9 +91,10 @@
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
  * MPI launcher) started it, or with AlwaysDistribute; FillHoles,
- * CoveringRounds and BoundSnappedHoles (FEATURE_PRESERVING) are global and switched off in
- * distributed runs (FillHoles with a warning). The serial path gives the same points too when FillHoles is
- * off. Design and limits: vtkASMDistributed.h.
+ * CoveringRounds and BoundSnappedHoles (FEATURE_PRESERVING) are global and
+ * switched off in distributed runs (FillHoles with a warning). The serial
+ * path gives the same points too when those three are off. Design and
+ * limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
  *

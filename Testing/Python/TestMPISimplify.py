@@ -13,8 +13,9 @@ FEATURE_PRESERVING mode, N_s = 3000 with FeatureSamplesPerCell 4, a grid fine en
 that each process's halo of 7 cell rings does not cover the whole bunny;
 FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
-(one process, AlwaysDistribute off), so the serial path runs (FillHoles and
-CoveringRounds off in the feature mode, as a distributed run has them); its output must match
+(one process, AlwaysDistribute off), so the serial path runs (FillHoles,
+CoveringRounds and BoundSnappedHoles off in the feature mode, as a distributed
+run has them); its output must match
 the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
