@@ -10,6 +10,20 @@
 
 namespace asmcore
 {
+namespace
+{
+// The squared distance from p to the farthest of the points xyz[3 * first[m]].
+double SquaredReach(const double* xyz, const Index* first, Index n, const double p[3])
+{
+  double r = 0.0;
+  for (Index m = 0; m < n; ++m)
+  {
+    r = std::max(r, SquaredDistance(xyz + 3 * first[m], p));
+  }
+  return r;
+}
+} // namespace
+
 double MinimaxCentre(
   const double* xyz, const Index* first, Index n, const double start[3], double centre[3])
 {
@@ -57,11 +71,8 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
     for (Index s = b; s < e; ++s)
     {
       const Sample& sample = result.Samples[s];
-      const Index* first = result.Members.data() + sample.MemberBegin;
-      for (Index m = 0; m < sample.ClusterSize; ++m)
-      {
-        reach[s] = std::max(reach[s], SquaredDistance(xyz + 3 * first[m], sample.Position));
-      }
+      reach[s] = SquaredReach(
+        xyz, result.Members.data() + sample.MemberBegin, sample.ClusterSize, sample.Position);
     }
   });
   double limit = 0.0; // squared largest hole so far
@@ -136,13 +147,9 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
         }
       };
       auto reachAt = [&](double t) {
-        double p[3], r = 0.0;
+        double p[3];
         at(t, p);
-        for (Index m = 0; m < sample.ClusterSize; ++m)
-        {
-          r = std::max(r, SquaredDistance(xyz + 3 * first[m], p));
-        }
-        return r;
+        return SquaredReach(xyz, first, sample.ClusterSize, p);
       };
       double lo = 0.0, hi = 1.0; // reach above the bound at lo, within it at hi
       for (int step = 0; step < 20; ++step)
