@@ -30,6 +30,7 @@ set(ASM_FILTERS_CORE
   CellNeighbors
   FeatureKeyPoints
   Lloyd
+  Assignment
   HoleFilling
   Covering
   SnappedHoles

@@ -19,7 +19,7 @@
 #ifndef asm_core_Covering_h
 #define asm_core_Covering_h
 
-#include "Lloyd.h"
+#include "Assignment.h"
 
 namespace asmcore
 {

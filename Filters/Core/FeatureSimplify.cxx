@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FeatureSimplify.h"
 
+#include "Assignment.h"
 #include "Budget.h"
 #include "CellFrame.h"
 #include "CellNeighbors.h"

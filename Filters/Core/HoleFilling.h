@@ -15,7 +15,7 @@
 #ifndef asm_core_HoleFilling_h
 #define asm_core_HoleFilling_h
 
-#include "Lloyd.h"
+#include "Assignment.h"
 
 namespace asmcore
 {

@@ -79,26 +79,6 @@ VTKASMFILTERS_EXPORT void RelaxCell(const double* xyz, const Index* points, Inde
   const CellFrame& frame, const std::vector<Index>& exclude, Index firstSample, Index fixedCount,
   Index budget, int iterations, SampleSet& samples, CellScratch& scratch);
 
-/// For every point (slot i of grid.Order): the nearest sample owned by its
-/// cell or a neighbouring one (ties: lower sample index), and the squared
-/// distance. -1 / infinity when none of those cells owns a sample.
-VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, const SampleSet& samples, std::vector<Index>& assign,
-  std::vector<double>& distance2, const Execution& execution);
-
-/// AssignToSamples after a few samples moved (FillHoles): `assign` and
-/// `distance2` hold the assignment before, to samples numbered as before
-/// (previous[new slot] = old slot, a permutation that keeps the order of the
-/// samples that did not move), and `moved` flags the samples (new slots)
-/// whose position or owner cell changed. Gives exactly what AssignToSamples
-/// gives (the nearest ring sample, ties: the lower index), but only the
-/// points whose sample moved are searched again; the others only compare
-/// with the moved samples of their ring.
-VTKASMFILTERS_EXPORT void UpdateAssignment(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,
-  const std::vector<char>& moved, std::vector<Index>& assign, std::vector<double>& distance2,
-  const Execution& execution);
-
 /// One Lloyd step across cell borders: every free sample moves to the
 /// centroid of the points assigned to it (unchanged when it has none).
 VTKASMFILTERS_EXPORT void MoveToCentroids(const double* xyz, const CellGrid& grid,

@@ -5,6 +5,7 @@
 #include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
+#include "Core/Assignment.h"
 #include "Core/Lloyd.h"
 #include "Core/Metrics.h"
 #include "Core/Neighbors.h"
@@ -299,13 +300,21 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
   const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
   const Index cells = grid.NumberOfCells();
   // Four samples per cell, on points of the cell (every 4th sample of
-  // every 3rd cell absent, so that some rings are thin).
+  // every 3rd cell absent, so that some rings are thin); the most populous
+  // cell owns more than LargeCellBudget (searched with a k-d tree).
   asmcore::SampleSet samples;
   samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
   std::vector<Index> ownerOf;
+  Index large = 0;
   for (Index cell = 0; cell < cells; ++cell)
   {
-    const Index n = std::min<Index>(cell % 3 == 0 ? 3 : 4, grid.CellSizeOf(cell));
+    large = grid.CellSizeOf(cell) > grid.CellSizeOf(large) ? cell : large;
+  }
+  ASSERT_GT(grid.CellSizeOf(large), asmcore::LargeCellBudget);
+  for (Index cell = 0; cell < cells; ++cell)
+  {
+    const Index n = cell == large ? asmcore::LargeCellBudget + 8
+                                  : std::min<Index>(cell % 3 == 0 ? 3 : 4, grid.CellSizeOf(cell));
     for (Index k = 0; k < n; ++k)
     {
       const double* p = c.data() + 3 * grid.CellPoints(cell)[k * grid.CellSizeOf(cell) / n];
@@ -343,6 +352,7 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
     moved[s] = order[s] % 17 == 0 ? 1 : 0;
   }
   std::partial_sum(after.Start.begin(), after.Start.end(), after.Start.begin());
+  ASSERT_GT(after.Start[large + 1] - after.Start[large], asmcore::LargeCellBudget);
   asmcore::AssignToSamples(c.data(), grid, neighbors, after, check, checkDistance2, {});
   asmcore::UpdateAssignment(c.data(), grid, neighbors, after, order, moved, assign, distance2, UnevenTwoThreads());
   EXPECT_EQ(assign, check);

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Assignment.h"
+
+#include "Neighbors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace asmcore
+{
+namespace
+{
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+/// AssignToSamples for the points of a cell that owns many samples: a k-d
+/// tree of the ring's samples (ties: lower index, as the brute-force search).
+void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, Index c, std::vector<Index>& assign, std::vector<double>& distance2,
+  std::vector<Index>& ringSamples)
+{
+  ringSamples.clear();
+  for (int k = 0; k < 27; ++k)
+  {
+    const Index nb = neighbors.Of(c)[k];
+    for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+    {
+      ringSamples.push_back(s);
+    }
+  }
+  const double* pos = samples.Position.data();
+  const Neighbors tree(pos, ringSamples);
+  for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+  {
+    const double* p = xyz + 3 * grid.Order[i];
+    const NearestPoint nearest = tree.Nearest(p);
+    assign[i] = nearest.Id;
+    distance2[i] = nearest.Id >= 0 ? SquaredDistance(p, pos + 3 * nearest.Id) : Infinity;
+  }
+}
+} // namespace
+
+void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, std::vector<Index>& assign, std::vector<double>& distance2,
+  const Execution& execution)
+{
+  assign.resize(grid.Order.size());
+  distance2.resize(grid.Order.size());
+  const double* pos = samples.Position.data();
+  execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
+    std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
+    std::vector<Index> ringSamples;
+    for (Index c = b; c < e; ++c)
+    {
+      const Index first = samples.Start[c], last = samples.Start[c + 1];
+      if (last - first > LargeCellBudget)
+      {
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, ringSamples);
+        continue;
+      }
+      // Pass 1: the nearest of the cell's own samples, and the farthest any
+      // point of the cell is from it (the search radius for the others).
+      double reach = 0.0;
+      double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        Index best = -1;
+        double bestD = Infinity;
+        for (Index s = first; s < last; ++s)
+        {
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD)
+          {
+            bestD = d;
+            best = s;
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+        reach = std::max(reach, bestD);
+        for (int a = 0; a < 3; ++a)
+        {
+          box[a] = std::min(box[a], p[a]);
+          box[3 + a] = std::max(box[3 + a], p[a]);
+        }
+      }
+      // The neighbours' samples that can be nearer for some point of c:
+      // within `reach` of the box of c's points.
+      candidates.clear();
+      const Index* ring = neighbors.Of(c);
+      const double r = std::sqrt(reach);
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        if (k == 13 || nb < 0)
+        {
+          continue;
+        }
+        for (Index s = samples.Start[nb]; s < samples.Start[nb + 1]; ++s)
+        {
+          const double* t = pos + 3 * s;
+          double g2 = 0.0;
+          for (int a = 0; a < 3; ++a)
+          {
+            const double g = t[a] < box[a] ? box[a] - t[a] : (t[a] > box[3 + a] ? t[a] - box[3 + a] : 0.0);
+            g2 += g * g;
+          }
+          if (!(g2 > reach) || !std::isfinite(r))
+          {
+            candidates.emplace_back(g2, s);
+          }
+        }
+      }
+      if (candidates.empty())
+      {
+        continue;
+      }
+      // Pass 2: those candidates, nearest the box first; a point lies in the
+      // box, so it is at least the box gap away from a candidate (ties: the
+      // lower sample index).
+      std::sort(candidates.begin(), candidates.end());
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        Index best = assign[i];
+        double bestD = distance2[i];
+        for (const auto& candidate : candidates)
+        {
+          if (candidate.first > bestD)
+          {
+            break;
+          }
+          const Index s = candidate.second;
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+      }
+    }
+  });
+}
+
+void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
+  std::vector<Index>& assign, std::vector<double>& distance2, const Execution& execution)
+{
+  const Index count = samples.Size();
+  const Index cells = grid.NumberOfCells();
+  std::vector<Index> renumber(static_cast<std::size_t>(count));
+  for (Index s = 0; s < count; ++s)
+  {
+    renumber[previous[s]] = s;
+  }
+  const double* pos = samples.Position.data();
+  execution.Run(0, cells, [&](Index b, Index e) {
+    std::vector<Index> near; // the moved samples of the ring
+    for (Index c = b; c < e; ++c)
+    {
+      if (samples.Start[c + 1] - samples.Start[c] > LargeCellBudget)
+      {
+        // A cell owning many samples searches them with a k-d tree, as
+        // AssignToSamples does (the same answers, in O(log) per point).
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, near);
+        continue;
+      }
+      const Index* ring = neighbors.Of(c);
+      near.clear();
+      for (int k = 0; k < 27; ++k)
+      {
+        const Index nb = ring[k];
+        for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+        {
+          if (moved[s])
+          {
+            near.push_back(s);
+          }
+        }
+      }
+      for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+      {
+        const double* p = xyz + 3 * grid.Order[i];
+        const Index before = assign[i] >= 0 ? renumber[assign[i]] : -1;
+        Index best = before;
+        double bestD = distance2[i];
+        auto consider = [&](Index s) {
+          const double d = SquaredDistance(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
+          }
+        };
+        if (before < 0 || moved[before])
+        {
+          // Its sample left (or it had none): the whole ring again.
+          best = -1;
+          bestD = Infinity;
+          for (int k = 0; k < 27; ++k)
+          {
+            const Index nb = ring[k];
+            for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+            {
+              consider(s);
+            }
+          }
+        }
+        else
+        {
+          // Its sample stayed: only a moved sample can now be nearer.
+          for (Index s : near)
+          {
+            consider(s);
+          }
+        }
+        assign[i] = best;
+        distance2[i] = bestD;
+      }
+    }
+  });
+}
+} // namespace asmcore
