@@ -69,8 +69,9 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   double VariationBudget = 1.0;
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
-  /// centre. Global, like FillHoles: not for distributed runs.
-  int CoveringRounds = 2;
+  /// centre (the default: BoundSnappedHoles bounds the largest hole without
+  /// moving every sample). Global, like FillHoles: not for distributed runs.
+  int CoveringRounds = 0;
   /// A point of a cell of fewer than 3 points (no PCA frame) that is the
   /// Lemma 2 extreme away from its neighbours within KeyPointRadius is a key
   /// point (a spike tip alone in its cell); needs ValidateKeyPoints and
@@ -80,7 +81,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// farther from it than the largest hole the clusters would leave with
   /// their samples at (about) their minimax centres (key samples where they
   /// are) moves towards that centre, just far enough: snapping never makes
-  /// the largest hole larger, and only those samples (at 20 %: 0.1-6 %) leave
+  /// the largest hole larger, and only those samples (at 20 %: 2-15 %) leave
   /// the input points. Global, like FillHoles: not for distributed runs.
   bool BoundSnappedHoles = true;
 

@@ -101,13 +101,18 @@ TEST(FeatureCoverage, MinimaxCentreIsNearTheSmallestBall)
 
 TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
 {
-  // 20 % of a sphere and of a bumpy box (keys), with the covering rounds
-  // and hole filling on (the defaults).
+  // 20 % of a sphere and of a bumpy box (keys), with hole filling on (the
+  // default) and two covering rounds (samples already near their minimax
+  // centres: the bound moves few of them; without the rounds, the default,
+  // 2-15 % of the samples move on the quality benchmark's inputs).
   for (const Cloud& cloud : { Sphere(6000, 1.0, 3), Box(20000).Points })
   {
     const Index n = static_cast<Index>(cloud.size() / 3), target = n / 5;
     auto run = [&](bool bound) {
-      return SimplifyWith(cloud, target, [bound](auto& p) { p.BoundSnappedHoles = bound; });
+      return SimplifyWith(cloud, target, [bound](auto& p) {
+        p.BoundSnappedHoles = bound;
+        p.CoveringRounds = 2;
+      });
     };
     const auto off = run(false), on = run(true);
     ASSERT_EQ(static_cast<Index>(on.Samples.size()), target);

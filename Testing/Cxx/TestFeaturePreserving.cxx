@@ -176,7 +176,7 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.FillHoles = false; }, [](auto& p) { p.Snap = true; },
     [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
     [](auto& p) { p.FeatureSamplesPerCell = 8.0; }, [](auto& p) { p.VariationBudget = 0.0; },
-    [](auto& p) { p.CoveringRounds = 0; }, [](auto& p) { p.SparseCellKeyPoints = false; },
+    [](auto& p) { p.CoveringRounds = 2; }, [](auto& p) { p.SparseCellKeyPoints = false; },
     [](auto& p) { p.BoundSnappedHoles = false; } };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
@@ -235,7 +235,7 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "HoleFillFraction", [](vtkASMSimplify* f) { f->SetHoleFillFraction(0.1); } },
     { "FeatureSamplesPerCell", [](vtkASMSimplify* f) { f->SetFeatureSamplesPerCell(8.0); } },
     { "VariationBudget", [](vtkASMSimplify* f) { f->SetVariationBudget(0.0); } },
-    { "CoveringRounds", [](vtkASMSimplify* f) { f->SetCoveringRounds(0); } },
+    { "CoveringRounds", [](vtkASMSimplify* f) { f->SetCoveringRounds(2); } },
     { "BoundSnappedHolesOff", [](vtkASMSimplify* f) { f->BoundSnappedHolesOff(); } },
     // (SparseCellKeyPoints changes nothing on the fandisk: no tip alone in a
     // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)

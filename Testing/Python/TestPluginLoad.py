@@ -47,7 +47,7 @@ expected_defaults = {
     "HoleFillFraction": 0.02,
     "FeatureSamplesPerCell": 4.0,
     "VariationBudget": 1.0,
-    "CoveringRounds": 2,
+    "CoveringRounds": 0,
     "SparseCellKeyPoints": 1,
     "BoundSnappedHoles": 1,
     # Parallel (MPI) runs.
