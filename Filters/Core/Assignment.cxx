@@ -160,13 +160,14 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
   const double* pos = samples.Position.data();
   execution.Run(0, cells, [&](Index b, Index e) {
     std::vector<Index> near; // the moved samples of the ring
+    std::vector<Index> ringSamples;
     for (Index c = b; c < e; ++c)
     {
       if (samples.Start[c + 1] - samples.Start[c] > LargeCellBudget)
       {
         // A cell owning many samples searches them with a k-d tree, as
         // AssignToSamples does (the same answers, in O(log) per point).
-        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, near);
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, ringSamples);
         continue;
       }
       const Index* ring = neighbors.Of(c);
