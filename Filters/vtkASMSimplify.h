@@ -71,9 +71,9 @@
  * CrossCellIterations); samples placed on input points (InputPointSamples);
  * a bounded hole-filling pass (FillHoles, HoleFillFraction); finer cells
  * (FeatureSamplesPerCell) whose budget follows the surface variation
- * (VariationBudget); input-point samples that cover their clusters
- * (CoveringRounds); and a bound on the largest hole that snapping to input
- * points may leave (BoundSnappedHoles). In this
+ * (VariationBudget); a bound on the largest hole that snapping to input
+ * points may leave (BoundSnappedHoles); and, off by default, rounds that
+ * move input-point samples to cover their clusters (CoveringRounds). In this
  * mode a cluster is the set of input points nearest a sample, the count is
  * still exactly N_s, and AKPE/MKPE are 0 when the key points sit on their
  * extreme points. The options other than Mode are ignored in PAPER mode.
