@@ -31,6 +31,7 @@ set(ASM_FILTERS_CORE
   FeatureKeyPoints
   Lloyd
   Assignment
+  Selection
   HoleFilling
   Covering
   SnappedHoles

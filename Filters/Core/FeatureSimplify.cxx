@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace asmcore
@@ -173,14 +174,15 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
   // Every later pass reads the points cell by cell: a copy in cell order
   // (slot i holds point original.Order[i]) keeps those reads sequential.
-  std::vector<double> cellOrdered(static_cast<std::size_t>(3 * total));
+  // (Left uninitialized: the parallel copy takes the page faults.)
+  std::unique_ptr<double[]> cellOrdered(new double[static_cast<std::size_t>(3 * total)]);
   execution.Run(0, total, [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
     {
       std::copy(xyz + 3 * original.Order[i], xyz + 3 * original.Order[i] + 3, &cellOrdered[3 * i]);
     }
   });
-  const double* P = cellOrdered.data(); // released before the output
+  const double* P = cellOrdered.get(); // released before the output
   CellGrid grid;
   grid.Spec = original.Spec;
   grid.CellStart = original.CellStart;
@@ -314,15 +316,19 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     }
     std::vector<SampleInfo> regrouped(info.size());
     std::vector<char> moved(info.size(), 0);
-    for (Index s = 0; s < count; ++s)
-    {
-      regrouped[s] = info[order[s]];
-      regrouped[s].Owner = static_cast<Index>(
-        std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
-      moved[s] = regrouped[s].Owner != info[order[s]].Owner ||
-        !std::equal(before.begin() + 3 * order[s], before.begin() + 3 * order[s] + 3,
-          samples.Position.begin() + 3 * s);
-    }
+    execution.Run(0, cells, [&](Index b, Index e) {
+      for (Index c = b; c < e; ++c)
+      {
+        for (Index s = samples.Start[c]; s < samples.Start[c + 1]; ++s)
+        {
+          regrouped[s] = info[order[s]];
+          regrouped[s].Owner = c;
+          moved[s] = c != info[order[s]].Owner ||
+            !std::equal(before.begin() + 3 * order[s], before.begin() + 3 * order[s] + 3,
+              samples.Position.begin() + 3 * s);
+        }
+      }
+    });
     info.swap(regrouped);
     // One Lloyd step re-centres the moved samples and their neighbours.
     UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, distance2, execution);
@@ -352,7 +358,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   // with: released before the members and the samples are laid out (the
   // peak memory of a run).
   std::vector<double>().swap(distance2);
-  std::vector<double>().swap(cellOrdered);
+  cellOrdered.reset();
   std::vector<Index>().swap(grid.Order);
   P = nullptr;
   // The members of each sample, in slot order.

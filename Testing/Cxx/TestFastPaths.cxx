@@ -19,31 +19,15 @@
 #include <array>
 #include <numeric>
 #include <random>
-#include <thread>
 #include <utility>
 
 using asmcore::Index;
 using asmtest::AllIds;
 using asmtest::Cloud;
+using asmtest::UnevenTwoThreads;
 
 namespace
 {
-// Cuts ranges into uneven pieces and runs them on two threads: the results
-// must not depend on how the work is cut or scheduled.
-asmcore::Execution UnevenTwoThreads()
-{
-  asmcore::Execution execution;
-  execution.For = [](Index begin, Index end, const std::function<void(Index, Index)>& body) {
-    const Index n = end - begin;
-    const Index cut1 = begin + n / 7, cut2 = begin + n / 7 + (n * 3) / 5;
-    std::thread other([&] { body(cut1, cut2); });
-    body(begin, cut1);
-    body(cut2, end);
-    other.join();
-  };
-  return execution;
-}
-
 // The grid by its definition: (key, id) pairs sorted.
 asmcore::CellGrid ReferenceGrid(const double* xyz, const std::vector<Index>& ids, const asmcore::GridSpec& spec)
 {

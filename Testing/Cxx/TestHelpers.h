@@ -3,10 +3,14 @@
 #ifndef asm_TestHelpers_h
 #define asm_TestHelpers_h
 
+#include "Core/Common.h"
+
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace asmtest
@@ -63,6 +67,23 @@ inline std::vector<std::int64_t> AllIds(const Cloud& c)
     ids[i] = static_cast<std::int64_t>(i);
   }
   return ids;
+}
+
+/// Cuts ranges into uneven pieces and runs them on two threads: the results
+/// must not depend on how the work is cut or scheduled.
+inline asmcore::Execution UnevenTwoThreads()
+{
+  asmcore::Execution execution;
+  execution.For = [](asmcore::Index begin, asmcore::Index end,
+                    const std::function<void(asmcore::Index, asmcore::Index)>& body) {
+    const asmcore::Index n = end - begin;
+    const asmcore::Index cut1 = begin + n / 7, cut2 = begin + n / 7 + (n * 3) / 5;
+    std::thread other([&] { body(cut1, cut2); });
+    body(begin, cut1);
+    body(cut2, end);
+    other.join();
+  };
+  return execution;
 }
 
 inline std::string DataFile(const std::string& name)

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The hole filling of the feature-preserving mode and its ranking helpers:
+// the parallel selections are their plain definitions, and the removal costs
+// computed ahead in parallel batches give the moves of a serial scan.
+#include "Core/Assignment.h"
+#include "Core/CellNeighbors.h"
+#include "Core/Grid.h"
+#include "Core/HoleFilling.h"
+#include "Core/Selection.h"
+
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+using asmcore::Index;
+using asmtest::Cloud;
+using asmtest::UnevenTwoThreads;
+
+namespace
+{
+// Values with many ties, and (optionally) infinities and NaNs.
+std::vector<double> TiedValues(Index n, bool nonFinite, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> level(0, 500);
+  std::uniform_int_distribution<int> kind(0, 40);
+  std::vector<double> v(static_cast<std::size_t>(n));
+  for (auto& x : v)
+  {
+    x = 0.01 * level(rng) - 2.0;
+    const int k = kind(rng);
+    if (nonFinite && k == 0)
+    {
+      x = std::numeric_limits<double>::infinity();
+    }
+    else if (nonFinite && k == 1)
+    {
+      x = -std::numeric_limits<double>::infinity();
+    }
+    else if (nonFinite && k == 2)
+    {
+      x = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return v;
+}
+
+// The largest finite values by definition: all finite (value, index) pairs
+// fully sorted, the first `look` indices.
+std::vector<Index> ReferenceLargest(const std::vector<double>& v, Index look)
+{
+  std::vector<asmcore::RankedValue> all;
+  for (Index i = 0; i < static_cast<Index>(v.size()); ++i)
+  {
+    if (std::isfinite(v[i]))
+    {
+      all.emplace_back(v[i], i);
+    }
+  }
+  std::sort(all.begin(), all.end(), asmcore::RanksBefore);
+  std::vector<Index> ids;
+  for (Index k = 0; k < std::min<Index>(look, static_cast<Index>(all.size())); ++k)
+  {
+    ids.push_back(all[k].second);
+  }
+  return ids;
+}
+} // namespace
+
+TEST(HoleFilling, SortRankedIsAFullSort)
+{
+  for (Index n : { Index(0), Index(1), Index(1000), Index(40000), Index(300001) })
+  {
+    const std::vector<double> v = TiedValues(n, false, 3);
+    std::vector<asmcore::RankedValue> pairs;
+    for (Index i = n - 1; i >= 0; --i) // reversed: the blocks start unsorted
+    {
+      pairs.emplace_back(v[i], i);
+    }
+    std::vector<asmcore::RankedValue> reference(pairs);
+    std::sort(reference.begin(), reference.end(), asmcore::RanksBefore);
+    std::vector<asmcore::RankedValue> serial(pairs), parallel(pairs);
+    asmcore::SortRanked(serial, {});
+    asmcore::SortRanked(parallel, UnevenTwoThreads());
+    EXPECT_EQ(serial, reference) << n;
+    EXPECT_EQ(parallel, reference) << n;
+  }
+}
+
+TEST(HoleFilling, LargestFiniteIsTheDefinition)
+{
+  for (Index n : { Index(0), Index(7), Index(5000), Index(200000) })
+  {
+    const std::vector<double> v = TiedValues(n, true, 5);
+    for (Index look : { Index(0), Index(1), Index(10), n / 50, n / 3, n, 2 * n + 3 })
+    {
+      const std::vector<Index> reference = ReferenceLargest(v, look);
+      EXPECT_EQ(asmcore::LargestFinite(v, look, {}), reference) << n << " " << look;
+      EXPECT_EQ(asmcore::LargestFinite(v, look, UnevenTwoThreads()), reference) << n << " " << look;
+    }
+  }
+  // All equal: the lowest indices, in order.
+  const std::vector<double> flat(100000, 1.5);
+  const std::vector<Index> first = asmcore::LargestFinite(flat, 3, UnevenTwoThreads());
+  EXPECT_EQ(first, (std::vector<Index>{ 0, 1, 2 }));
+}
+
+TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
+{
+  // A sphere sampled unevenly: six samples in each cell of the x > 0 half,
+  // one in each cell of the other half (large gaps), so that many samples
+  // move and moves change the removal costs of candidates computed ahead.
+  const Cloud c = asmtest::Sphere(30000, 1.0, 19);
+  const auto ids = asmtest::AllIds(c);
+  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
+  const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, 0.15));
+  const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
+  const Index cells = grid.NumberOfCells();
+  asmcore::SampleSet samples;
+  samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (Index cell = 0; cell < cells; ++cell)
+  {
+    const Index n0 = grid.CellSizeOf(cell);
+    const double* first = c.data() + 3 * grid.CellPoints(cell)[0];
+    const Index n = std::min<Index>(first[0] > 0.0 ? 6 : 1, n0);
+    for (Index k = 0; k < n; ++k)
+    {
+      const double* p = c.data() + 3 * grid.CellPoints(cell)[k * n0 / n];
+      samples.Position.insert(samples.Position.end(), p, p + 3);
+      samples.Fixed.push_back(k == 0 && cell % 5 == 0 ? 1 : 0);
+    }
+    samples.Start[cell + 1] = samples.Start[cell] + n;
+  }
+  std::vector<Index> assign;
+  std::vector<double> distance2;
+  asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
+  const double holeBefore = *std::max_element(distance2.begin(), distance2.end());
+  const Index maxMoves = samples.Size() / 8;
+
+  asmcore::SampleSet serial = samples;
+  std::vector<Index> serialOrder;
+  const Index serialMoves = asmcore::FillHoles(
+    c.data(), grid, neighbors, assign, distance2, maxMoves, serial, serialOrder, {}, 1);
+  ASSERT_GT(serialMoves, 20) << "the set-up must move many samples";
+  for (Index firstBatch : { Index(2), Index(32), Index(5000) })
+  {
+    asmcore::SampleSet batched = samples;
+    std::vector<Index> batchedOrder;
+    const Index batchedMoves = asmcore::FillHoles(c.data(), grid, neighbors, assign, distance2, maxMoves,
+      batched, batchedOrder, UnevenTwoThreads(), firstBatch);
+    EXPECT_EQ(batchedMoves, serialMoves) << firstBatch;
+    EXPECT_EQ(batchedOrder, serialOrder) << firstBatch;
+    EXPECT_EQ(batched.Start, serial.Start) << firstBatch;
+    EXPECT_EQ(batched.Position, serial.Position) << firstBatch;
+    EXPECT_EQ(batched.Fixed, serial.Fixed) << firstBatch;
+  }
+  // Fixed samples never move, and the largest hole shrinks.
+  for (Index s = 0; s < serial.Size(); ++s)
+  {
+    if (serial.Fixed[s])
+    {
+      const Index old = serialOrder[s];
+      EXPECT_TRUE(std::equal(serial.Position.begin() + 3 * s, serial.Position.begin() + 3 * s + 3,
+        samples.Position.begin() + 3 * old));
+    }
+  }
+  asmcore::AssignToSamples(c.data(), grid, neighbors, serial, assign, distance2, {});
+  EXPECT_LT(*std::max_element(distance2.begin(), distance2.end()), 0.7 * holeBefore);
+}
