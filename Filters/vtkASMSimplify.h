@@ -165,7 +165,9 @@ public:
   ///@{
   /**
    * FEATURE_PRESERVING: radius of the Lemma 2 test, as a fraction of the cell
-   * size, in [0.01, 1]; default 0.5.
+   * size, in [0.01, 1]; default 0.7 (a wider test keeps fewer, more
+   * significant key points: isolated pairs of points in a scan no longer
+   * hold a sample each at their extremes).
    */
   vtkSetClampMacro(KeyPointRadius, double, 0.01, 1.0);
   vtkGetMacro(KeyPointRadius, double);
@@ -339,7 +341,7 @@ public:
    * hole the clusters would leave with their samples at (about) their
    * minimax centres (key samples where they are) moves from its input point
    * towards that centre, just far enough to reach no farther; default on.
-   * Only those samples (at 20 %: 2-15 %) leave the input points;
+   * Only those samples (at 20 %: 4-16 %) leave the input points;
    * their vtkOriginalPointIds is still the input point they left. Global
    * like FillHoles: distributed runs switch it off.
    */
@@ -535,7 +537,7 @@ protected:
 
   int Mode = FEATURE_PRESERVING;
   bool ValidateKeyPoints = true;
-  double KeyPointRadius = 0.5;
+  double KeyPointRadius = 0.7;
   double KeyPointProminence = 0.05;
   bool InPlaneKeyPoints = true;
   bool ExtremeKeyPoints = true;

@@ -47,7 +47,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   // Options of the feature-preserving mode (ignored in Paper mode); each one
   // switches one fix off (see FeatureSimplify.h).
   bool ValidateKeyPoints = true; ///< Lemma 2 across cell borders
-  double KeyPointRadius = 0.5;   ///< Lemma 2 radius, fraction of the cell size, in (0, 1]
+  double KeyPointRadius = 0.7;   ///< Lemma 2 radius, fraction of the cell size, in (0, 1]
   double KeyPointProminence = 0.05; ///< least prominence of a validated key, fraction of that radius
   bool InPlaneKeyPoints = true;  ///< extremes along +-v0/+-v1 are key points too
   bool ExtremeKeyPoints = true;  ///< a key sample is its extreme point, not the band centroid
@@ -81,7 +81,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// farther from it than the largest hole the clusters would leave with
   /// their samples at (about) their minimax centres (key samples where they
   /// are) moves towards that centre, just far enough: snapping never makes
-  /// the largest hole larger, and only those samples (at 20 %: 2-15 %) leave
+  /// the largest hole larger, and only those samples (at 20 %: 4-16 %) leave
   /// the input points. Global, like FillHoles: not for distributed runs.
   bool BoundSnappedHoles = true;
 

@@ -34,7 +34,7 @@ expected_defaults = {
     "OutputPointsPrecision": "Same as input",
     # Options of the feature-preserving mode.
     "ValidateKeyPoints": 1,
-    "KeyPointRadius": 0.5,
+    "KeyPointRadius": 0.7,
     "KeyPointProminence": 0.05,
     "InPlaneKeyPoints": 1,
     "ExtremeKeyPoints": 1,
