@@ -29,11 +29,12 @@ Index CellOfSample(const SampleSet& samples, Index s)
     std::upper_bound(samples.Start.begin(), samples.Start.end(), s) - samples.Start.begin() - 1);
 }
 
-// The spread of every sample: the largest squared distance of its members
-// (infinite for fixed samples and samples without members). A maximum does
-// not depend on the order of its terms: the points are cut in blocks that
-// raise shared per-sample maxima atomically.
-std::vector<double> Spreads(const std::vector<Index>& assign, const std::vector<double>& distance2,
+// The spread of every sample, negated: minus the largest squared distance
+// of its members (-infinity for fixed samples and samples without members),
+// so that the smallest spreads are the largest values. A maximum does not
+// depend on the order of its terms: the points are cut in blocks that raise
+// shared per-sample maxima atomically.
+std::vector<double> NegatedSpreads(const std::vector<Index>& assign, const std::vector<double>& distance2,
   const SampleSet& samples, const Execution& execution)
 {
   const Index count = samples.Size();
@@ -60,15 +61,15 @@ std::vector<double> Spreads(const std::vector<Index>& assign, const std::vector<
       }
     }
   });
-  std::vector<double> radius(static_cast<std::size_t>(count));
+  std::vector<double> negated(static_cast<std::size_t>(count));
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
       const double r = spread[s].load(std::memory_order_relaxed);
-      radius[s] = samples.Fixed[s] || r < 0.0 ? Infinity : r;
+      negated[s] = samples.Fixed[s] || r < 0.0 ? -Infinity : -r;
     }
   });
-  return radius;
+  return negated;
 }
 } // namespace
 
@@ -89,18 +90,10 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   // first (small clusters in dense areas), a few per move. The spread of a
   // sample is the largest squared distance of its members (infinite for
   // fixed samples and samples without members).
-  const std::vector<double> radius = Spreads(assign, distance2, samples, execution);
-  // The smallest spreads first (ties: the lower sample), as the largest of
-  // the negated spreads; infinite spreads are never candidates.
-  std::vector<double> negated(radius.size());
-  execution.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      negated[s] = -radius[s];
-    }
-  });
-  const std::vector<Index> candidates =
-    LargestFinite(negated, std::min<Index>(count, 8 * maxMoves), execution);
+  // The smallest spreads first (ties: the lower sample); infinite spreads
+  // are never candidates.
+  const std::vector<Index> candidates = LargestFinite(
+    NegatedSpreads(assign, distance2, samples, execution), std::min<Index>(count, 8 * maxMoves), execution);
   // Members (point slots) of the candidates only, by counting sort.
   std::vector<Index> candidateOf(static_cast<std::size_t>(count), -1);
   for (std::size_t k = 0; k < candidates.size(); ++k)
