@@ -174,7 +174,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
   // Every later pass reads the points cell by cell: a copy in cell order
   // (slot i holds point original.Order[i]) keeps those reads sequential.
-  // (Left uninitialized: the parallel copy takes the page faults.)
+  // (Left uninitialised: the parallel copy takes the page faults.)
   std::unique_ptr<double[]> cellOrdered(new double[static_cast<std::size_t>(3 * total)]);
   execution.Run(0, total, [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
