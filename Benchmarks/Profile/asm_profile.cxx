@@ -16,7 +16,7 @@
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
- * comparisons). Times: medians of wall and of process CPU time (the latter
+ * comparisons; with each point's ClusterSize). Times: medians of wall and of process CPU time (the latter
  * is robust to a loaded machine). Peak memory: VmHWM after resetting it (clear_refs 5) once the
  * input exists, minus the resident size then, per input point.
  */
@@ -363,12 +363,13 @@ int main(int argc, char* argv[])
           vtkDataArray* oid = out->GetPointData()->GetArray("vtkOriginalPointIds");
           vtkDataArray* key = out->GetPointData()->GetArray("KeyPoint");
           vtkDataArray* mc = out->GetPointData()->GetArray("MeanCurvature");
+          vtkDataArray* size = out->GetPointData()->GetArray("ClusterSize");
           for (vtkIdType i = 0; i < outCount; ++i)
           {
             double p[3];
             out->GetPoint(i, p);
-            std::fprintf(f, "%.17g %.17g %.17g %lld %d", p[0], p[1], p[2],
-              (long long)oid->GetTuple1(i), int(key->GetTuple1(i)));
+            std::fprintf(f, "%.17g %.17g %.17g %lld %d %lld", p[0], p[1], p[2],
+              (long long)oid->GetTuple1(i), int(key->GetTuple1(i)), (long long)size->GetTuple1(i));
             if (mc)
               std::fprintf(f, " %.12g", mc->GetTuple1(i));
             std::fprintf(f, "\n");

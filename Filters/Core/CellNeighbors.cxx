@@ -5,44 +5,48 @@
 
 namespace asmcore
 {
+void CellNeighborsOf(const CellGrid& grid, Index c, Index out[27])
+{
+  std::int64_t ijk[3];
+  grid.Spec.Unpack(grid.CellKey[c], ijk);
+  const auto keys = grid.CellKey.begin();
+  const auto keysEnd = grid.CellKey.end();
+  // The three cells dx = -1, 0, 1 of a row (dy, dz) have consecutive keys:
+  // one search per row finds them all.
+  const std::int64_t x0 = std::max<std::int64_t>(0, ijk[0] - 1);
+  const std::int64_t x1 = std::min<std::int64_t>(grid.Spec.Dims[0] - 1, ijk[0] + 1);
+  int k = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+  {
+    for (int dy = -1; dy <= 1; ++dy, k += 3)
+    {
+      std::fill_n(out + k, 3, Index(-1));
+      const std::int64_t y = ijk[1] + dy, z = ijk[2] + dz;
+      if (y < 0 || y >= grid.Spec.Dims[1] || z < 0 || z >= grid.Spec.Dims[2])
+      {
+        continue;
+      }
+      const std::uint64_t row =
+        (static_cast<std::uint64_t>(z) << 42) | (static_cast<std::uint64_t>(y) << 21);
+      auto it = std::lower_bound(keys, keysEnd, row | static_cast<std::uint64_t>(x0));
+      for (; it != keysEnd && *it <= (row | static_cast<std::uint64_t>(x1)); ++it)
+      {
+        const auto x = static_cast<std::int64_t>(*it & ((std::uint64_t(1) << 21) - 1));
+        out[k + static_cast<int>(x - ijk[0]) + 1] = static_cast<Index>(it - keys);
+      }
+    }
+  }
+}
+
 CellNeighborTable BuildCellNeighbors(const CellGrid& grid, const Execution& execution)
 {
   CellNeighborTable table;
   const Index cells = grid.NumberOfCells();
-  table.Cells.assign(static_cast<std::size_t>(27 * cells), -1);
+  table.Cells.resize(static_cast<std::size_t>(27 * cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     for (Index c = b; c < e; ++c)
     {
-      std::int64_t ijk[3];
-      grid.Spec.Unpack(grid.CellKey[c], ijk);
-      Index* out = table.Cells.data() + 27 * c;
-      int k = 0;
-      for (int dz = -1; dz <= 1; ++dz)
-      {
-        for (int dy = -1; dy <= 1; ++dy)
-        {
-          for (int dx = -1; dx <= 1; ++dx, ++k)
-          {
-            const std::int64_t n[3] = { ijk[0] + dx, ijk[1] + dy, ijk[2] + dz };
-            bool inside = true;
-            for (int a = 0; a < 3; ++a)
-            {
-              inside = inside && n[a] >= 0 && n[a] < grid.Spec.Dims[a];
-            }
-            if (!inside)
-            {
-              continue;
-            }
-            const std::uint64_t key = (static_cast<std::uint64_t>(n[2]) << 42) |
-              (static_cast<std::uint64_t>(n[1]) << 21) | static_cast<std::uint64_t>(n[0]);
-            const auto it = std::lower_bound(grid.CellKey.begin(), grid.CellKey.end(), key);
-            if (it != grid.CellKey.end() && *it == key)
-            {
-              out[k] = static_cast<Index>(it - grid.CellKey.begin());
-            }
-          }
-        }
-      }
+      CellNeighborsOf(grid, c, table.Cells.data() + 27 * c);
     }
   });
   return table;

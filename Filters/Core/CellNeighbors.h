@@ -23,6 +23,9 @@ struct VTKASMFILTERS_EXPORT CellNeighborTable
   const Index* Of(Index c) const { return this->Cells.data() + 27 * c; }
 };
 
+/// The 27 entries of the table for cell c alone (as BuildCellNeighbors).
+VTKASMFILTERS_EXPORT void CellNeighborsOf(const CellGrid& grid, Index c, Index out[27]);
+
 /// Build the table for `grid` (runs over cells through `execution`).
 VTKASMFILTERS_EXPORT CellNeighborTable BuildCellNeighbors(
   const CellGrid& grid, const Execution& execution = {});

@@ -54,6 +54,17 @@ struct Execution
   bool Report(double fraction) const { return this->Progress ? this->Progress(fraction) : false; }
 };
 
+/// A hint to start loading the cache line at `p` (a no-op where unsupported):
+/// for loops that gather points scattered in memory.
+inline void Prefetch(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);
 

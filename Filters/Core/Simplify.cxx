@@ -6,17 +6,23 @@
 #include "FeatureSimplify.h"
 #include "CellSize.h"
 #include "Grid.h"
+#include "CellNeighbors.h"
 #include "KeyPoints.h"
 #include "Neighbors.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace asmcore
 {
 namespace
 {
+// A ring of cells holding more than 4 * this many samples leaves the nearest
+// sample search of its unclaimed points to a k-d tree (bounded work).
+constexpr Index LargeRingSamples = 128;
+
 // A group of a cell's points (local indices) that becomes one sample.
 struct Group
 {
@@ -119,42 +125,162 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
   return groups;
 }
 
+// The sample nearest to each of the points xyz[3 * points[i]] (ties: the
+// lower sample index), searched in the 3 x 3 x 3 block of cells around the
+// point's cell `cellOf[i]` (ascending): cell c owns samples
+// [sampleStart[c], sampleStart[c + 1]), which lie in its box. A neighbouring
+// cell whose box is farther than the best sample so far is skipped, and a
+// sample found within a cell's edge of its point is the nearest of all (any
+// cell outside the block is farther); the other points, and those of a
+// block holding very many samples, are left at -1 in `owner` for a global
+// search.
+void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
+  const std::vector<Index>& sampleStart, const SimplifyResult& result,
+  const std::vector<Index>& points, const std::vector<Index>& cellOf, std::vector<Index>& owner,
+  const Execution& execution)
+{
+  const Index n = static_cast<Index>(points.size());
+  const double h = grid.Spec.CellSize;
+  // A margin far above the rounding of the positions (relative to their
+  // magnitude: georeferenced clouds) and of the cell boxes.
+  const double accept = h * h * (1.0 - 1e-6);
+  std::vector<Index> runStart; // runs of points of one cell
+  for (Index i = 0; i < n; ++i)
+  {
+    if (i == 0 || cellOf[i] != cellOf[i - 1])
+    {
+      runStart.push_back(i);
+    }
+  }
+  const Index runs = static_cast<Index>(runStart.size());
+  runStart.push_back(n);
+  // The positions side by side: a cell's samples in a few cache lines.
+  const Index samples = static_cast<Index>(result.Samples.size());
+  std::vector<double> position(static_cast<std::size_t>(3 * samples));
+  execution.Run(0, samples, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      std::copy_n(result.Samples[s].Position, 3, &position[3 * s]);
+    }
+  });
+  execution.Run(0, runs, [&](Index b, Index e) {
+    Index ring[27];
+    for (Index r = b; r < e; ++r)
+    {
+      const Index c = cellOf[runStart[r]];
+      CellNeighborsOf(grid, c, ring);
+      Index ringSamples = 0;
+      for (Index nb : ring)
+      {
+        ringSamples += nb < 0 ? 0 : sampleStart[nb + 1] - sampleStart[nb];
+      }
+      if (ringSamples > 4 * LargeRingSamples)
+      {
+        std::fill(owner.begin() + runStart[r], owner.begin() + runStart[r + 1], Index(-1));
+        continue;
+      }
+      std::int64_t ijk[3];
+      grid.Spec.Unpack(grid.CellKey[c], ijk);
+      double lo[3], shrink[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = grid.Spec.Origin[a] + h * static_cast<double>(ijk[a]);
+        shrink[a] = 1e-9 * h + 1e-12 * std::abs(lo[a]);
+      }
+      for (Index i = runStart[r]; i < runStart[r + 1]; ++i)
+      {
+        const double* p = xyz + 3 * points[i];
+        if (i + 8 < n)
+        {
+          Prefetch(xyz + 3 * points[i + 8]); // the points are scattered in memory
+        }
+        // Squared gaps to the neighbouring boxes along each axis: below
+        // (offset -1), none (0), above (+1).
+        double gap[3][3];
+        for (int a = 0; a < 3; ++a)
+        {
+          const double below = std::max(0.0, p[a] - lo[a] - shrink[a]);
+          const double above = std::max(0.0, lo[a] + h - p[a] - shrink[a]);
+          gap[a][0] = below * below;
+          gap[a][1] = 0.0;
+          gap[a][2] = above * above;
+        }
+        Index best = -1;
+        double bestD = std::numeric_limits<double>::infinity();
+        auto scan = [&](Index cell) {
+          for (Index s = sampleStart[cell]; s < sampleStart[cell + 1]; ++s)
+          {
+            const double* t = &position[3 * s];
+            // As the k-d tree computes it (Neighbors.cxx): the same ties.
+            const double dx = t[0] - p[0], dy = t[1] - p[1], dz = t[2] - p[2];
+            const double d = dx * dx + dy * dy + dz * dz;
+            if (d < bestD || (d == bestD && s < best))
+            {
+              bestD = d;
+              best = s;
+            }
+          }
+        };
+        scan(c); // the own cell first: the best bound for the others
+        for (int k = 0; k < 27; ++k)
+        {
+          if (k != 13 && ring[k] >= 0 && !(gap[0][k % 3] + gap[1][(k / 3) % 3] + gap[2][k / 9] > bestD))
+          {
+            scan(ring[k]);
+          }
+        }
+        owner[i] = bestD <= accept ? best : -1;
+      }
+    }
+  });
+}
+
 // Every point that no sample took (cells with a budget of 0, key clusters
 // left out by §3.3 (iv)) joins the sample nearest to it, after that sample's
 // own members: the member lists become a partition of the points, and the
 // samples do not move. Points in slots marked in `haloSlot` (halo cells of
-// a distributed run, owned by another process) are dropped instead.
-void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, SimplifyResult& result,
-  const std::vector<char>& haloSlot, const Execution& execution)
+// a distributed run, owned by another process) are dropped instead. Cell c's
+// points are the slots [grid.CellStart[c], grid.CellStart[c + 1]) of the
+// members; its samples, [sampleStart[c], sampleStart[c + 1]), took the first
+// of them.
+void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
+  const std::vector<Index>& sampleStart, SimplifyResult& result, const std::vector<char>& haloSlot,
+  const Execution& execution)
 {
-  const Index total = static_cast<Index>(ids.size());
+  const Index total = static_cast<Index>(result.Members.size());
   const Index samples = static_cast<Index>(result.Samples.size());
+  const Index cells = grid.NumberOfCells();
   if (samples == 0)
   {
     return;
   }
-  // Samples come in slot order, so the slots no sample covers are the gaps
-  // between their member ranges: they hold the unclaimed points.
-  std::vector<Index> unclaimed;
-  auto collect = [&](Index begin, Index end) {
-    for (Index slot = begin; slot < end; ++slot)
+  // The unclaimed slots of each cell follow its samples' members.
+  auto claimedEnd = [&](Index c) {
+    const Index last = sampleStart[c + 1] - 1;
+    return last >= sampleStart[c]
+      ? result.Samples[last].MemberBegin + result.Samples[last].ClusterSize
+      : grid.CellStart[c];
+  };
+  std::vector<Index> unclaimed, cellOf;
+  bool haloDropped = false;
+  for (Index c = 0; c < cells; ++c)
+  {
+    for (Index slot = claimedEnd(c); slot < grid.CellStart[c + 1]; ++slot)
     {
       if (haloSlot.empty() || !haloSlot[slot])
       {
         unclaimed.push_back(result.Members[slot]);
+        cellOf.push_back(c);
+      }
+      else
+      {
+        haloDropped = true;
       }
     }
-  };
-  Index cursor = 0;
-  for (const Sample& s : result.Samples)
-  {
-    collect(cursor, s.MemberBegin);
-    cursor = s.MemberBegin + s.ClusterSize;
   }
-  collect(cursor, total);
   if (unclaimed.empty())
   {
-    if (cursor != total || result.Samples[0].MemberBegin != 0)
+    if (haloDropped)
     {
       // Only halo points were left out: close the gaps.
       std::vector<Index> members;
@@ -170,22 +296,58 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
     }
     return;
   }
-  std::vector<double> positions(static_cast<std::size_t>(3 * samples));
-  std::vector<Index> sampleIds(static_cast<std::size_t>(samples));
-  for (Index s = 0; s < samples; ++s)
-  {
-    std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
-    sampleIds[s] = s;
-  }
-  const Neighbors tree(positions.data(), sampleIds, execution);
   std::vector<Index> owner(unclaimed.size());
-  execution.Run(0, static_cast<Index>(unclaimed.size()), [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
+  NearestSamplesInRing(xyz, grid, sampleStart, result, unclaimed, cellOf, owner, execution);
+  std::vector<Index> far; // positions in `unclaimed` left to the global search
+  for (std::size_t i = 0; i < owner.size(); ++i)
+  {
+    if (owner[i] < 0)
     {
-      const NearestPoint nearest = tree.Nearest(xyz + 3 * unclaimed[i]);
-      owner[i] = nearest.Id >= 0 ? nearest.Id : 0;
+      far.push_back(static_cast<Index>(i));
     }
-  });
+  }
+  if (!far.empty() && static_cast<double>(far.size()) * static_cast<double>(samples) <= 1e8)
+  {
+    // A few points (far outliers): every sample (ties: the lower index).
+    execution.Run(0, static_cast<Index>(far.size()), [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        const double* p = xyz + 3 * unclaimed[far[i]];
+        Index best = 0;
+        double bestD = std::numeric_limits<double>::infinity();
+        for (Index s = 0; s < samples; ++s)
+        {
+          const double* t = result.Samples[s].Position;
+          const double dx = t[0] - p[0], dy = t[1] - p[1], dz = t[2] - p[2];
+          const double d = dx * dx + dy * dy + dz * dz;
+          if (d < bestD)
+          {
+            bestD = d;
+            best = s;
+          }
+        }
+        owner[far[i]] = best;
+      }
+    });
+  }
+  else if (!far.empty())
+  {
+    std::vector<double> positions(static_cast<std::size_t>(3 * samples));
+    std::vector<Index> sampleIds(static_cast<std::size_t>(samples));
+    for (Index s = 0; s < samples; ++s)
+    {
+      std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
+      sampleIds[s] = s;
+    }
+    const Neighbors tree(positions.data(), sampleIds, execution);
+    execution.Run(0, static_cast<Index>(far.size()), [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        const NearestPoint nearest = tree.Nearest(xyz + 3 * unclaimed[far[i]]);
+        owner[far[i]] = nearest.Id >= 0 ? nearest.Id : 0;
+      }
+    });
+  }
   // Lay the members out again: each sample's own, then those that joined it.
   std::vector<Index> extra(static_cast<std::size_t>(samples) + 1, 0);
   for (Index o : owner)
@@ -209,19 +371,41 @@ void AttachUnclaimedPoints(const double* xyz, const std::vector<Index>& ids, Sim
   {
     begin[s + 1] = begin[s] + result.Samples[s].ClusterSize + (extra[s + 1] - extra[s]);
   }
-  std::vector<Index> members(static_cast<std::size_t>(begin[samples]));
+  // In place: the own blocks keep their order, so those moving towards the
+  // front move in increasing order and the others in decreasing order, each
+  // into room already vacated (the unclaimed ids are copied out); then the
+  // joined points fill the room left after each block.
+  std::vector<Index>& members = result.Members;
+  for (Index s = 0; s < samples; ++s)
+  {
+    const Sample& sample = result.Samples[s];
+    if (begin[s] < sample.MemberBegin)
+    {
+      std::copy(members.begin() + sample.MemberBegin,
+        members.begin() + sample.MemberBegin + sample.ClusterSize, members.begin() + begin[s]);
+    }
+  }
+  for (Index s = samples - 1; s >= 0; --s)
+  {
+    const Sample& sample = result.Samples[s];
+    if (begin[s] > sample.MemberBegin)
+    {
+      std::copy_backward(members.begin() + sample.MemberBegin,
+        members.begin() + sample.MemberBegin + sample.ClusterSize,
+        members.begin() + begin[s] + sample.ClusterSize);
+    }
+  }
   execution.Run(0, samples, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
       Sample& sample = result.Samples[s];
-      const auto own = result.Members.begin() + sample.MemberBegin;
-      const auto out = std::copy(own, own + sample.ClusterSize, members.begin() + begin[s]);
-      std::copy(joined.begin() + extra[s], joined.begin() + extra[s + 1], out);
+      std::copy(joined.begin() + extra[s], joined.begin() + extra[s + 1],
+        members.begin() + begin[s] + sample.ClusterSize);
       sample.MemberBegin = begin[s];
       sample.ClusterSize = begin[s + 1] - begin[s];
     }
   });
-  result.Members.swap(members);
+  members.resize(static_cast<std::size_t>(begin[samples])); // halo points dropped
 }
 
 std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
@@ -552,7 +736,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
     }
   }
 
-  AttachUnclaimedPoints(xyz, ids, result, haloSlot, execution);
+  AttachUnclaimedPoints(xyz, grid, sampleStart, result, haloSlot, execution);
 
   SummarizeKeyPoints(result);
   return result;

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The fast paths of the core give the results of their plain definitions:
 // the grid (bitmap and hash paths, reciprocal keys, counting sort, parallel
-// cuts), the in-plane linking (dense bins) and the level-by-level kd-tree.
+// cuts), the in-plane linking (dense bins), the level-by-level kd-tree, the
+// neighbouring cells (one search per row) and the paper mode's search for
+// the sample nearest an unclaimed point (the cells' rings first).
+#include "Core/CellNeighbors.h"
 #include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
@@ -9,6 +12,7 @@
 #include "Core/Lloyd.h"
 #include "Core/Metrics.h"
 #include "Core/Neighbors.h"
+#include "Core/Simplify.h"
 
 #include "TestHelpers.h"
 
@@ -271,6 +275,149 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
   EXPECT_EQ(built.CellKey, plain.CellKey);
   EXPECT_EQ(built.CellStart, plain.CellStart);
   EXPECT_EQ(built.Order, plain.Order);
+}
+
+TEST(FastPaths, CellNeighborsAreTheDefinition)
+{
+  // Cells at the grid's borders (a cloud filling its bounds) and sparse
+  // rows: each of the 27 entries is the cell found by its key, or -1.
+  Cloud c = asmtest::Sphere(3000, 1.0, 5);
+  asmtest::Add(c, 1.0, 1.0, 1.0);
+  asmtest::Add(c, -1.0, -1.0, -1.0);
+  const auto ids = AllIds(c);
+  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
+  for (double h : { 0.15, 0.5, 3.0 })
+  {
+    const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, h));
+    const asmcore::CellNeighborTable table = asmcore::BuildCellNeighbors(grid, UnevenTwoThreads());
+    for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
+    {
+      std::int64_t ijk[3];
+      grid.Spec.Unpack(grid.CellKey[cell], ijk);
+      for (int k = 0; k < 27; ++k)
+      {
+        const std::int64_t n[3] = { ijk[0] + k % 3 - 1, ijk[1] + (k / 3) % 3 - 1, ijk[2] + k / 9 - 1 };
+        Index expected = -1;
+        if (n[0] >= 0 && n[1] >= 0 && n[2] >= 0 && n[0] < grid.Spec.Dims[0] &&
+          n[1] < grid.Spec.Dims[1] && n[2] < grid.Spec.Dims[2])
+        {
+          const std::uint64_t key = (std::uint64_t(n[2]) << 42) | (std::uint64_t(n[1]) << 21) | std::uint64_t(n[0]);
+          const auto it = std::find(grid.CellKey.begin(), grid.CellKey.end(), key);
+          expected = it == grid.CellKey.end() ? -1 : static_cast<Index>(it - grid.CellKey.begin());
+        }
+        ASSERT_EQ(table.Of(cell)[k], expected) << "h " << h << " cell " << cell << " entry " << k;
+      }
+    }
+  }
+}
+
+// In the paper mode, every point that no sample placed (a cell without
+// budget, a key cluster left out) joins the nearest sample of all (ties: the
+// lower index): searched in the cells' rings, else globally (a far outlier;
+// a cell next to very many samples, where the ring search would be slow).
+TEST(FastPaths, PaperModeJoinsUnclaimedPointsToTheNearestSample)
+{
+  // A rough sphere (many key clusters per cell: some are left out) and three
+  // far outliers (cells without budget and without samples in their rings).
+  Cloud sphere;
+  {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> noise(-0.03, 0.03);
+    const Cloud smooth = asmtest::Sphere(20000, 1.0, 9);
+    for (std::size_t i = 0; i < smooth.size(); i += 3)
+    {
+      const double f = 1.0 + noise(rng);
+      asmtest::Add(sphere, f * smooth[i], f * smooth[i + 1], f * smooth[i + 2]);
+    }
+    asmtest::Add(sphere, 6.0, 0.0, 0.0);
+    asmtest::Add(sphere, 0.0, -6.0, 0.5);
+    asmtest::Add(sphere, 0.1, 0.0, 7.0);
+  }
+  // A wavy sheet filling the cell [0, 1)^2 x [0, 1) (CellSize 1, the origin
+  // at the bounds' minimum) and two points in the next cell along x, too few
+  // for a sample of their own, next to the sheet's 3000 samples.
+  Cloud sheet;
+  for (int i = 0; i < 150; ++i)
+  {
+    for (int j = 0; j < 150; ++j)
+    {
+      const double x = 0.0066 * i, y = 0.0066 * j;
+      asmtest::Add(sheet, x, y, 0.02 + 0.01 * std::sin(9.0 * x) * std::cos(7.0 * y));
+    }
+  }
+  asmtest::Add(sheet, 1.001, 0.5, 0.02);
+  asmtest::Add(sheet, 1.002, 0.2, 0.03);
+  struct Case
+  {
+    const Cloud* Points;
+    Index Target;
+    double CellSize;
+    Index Outliers; // joined points farther than half a cell from their sample, at least
+  };
+  for (const Case& run : { Case{ &sphere, 400, 0.0, 3 }, Case{ &sphere, 1000, 0.0, 3 },
+         Case{ &sheet, 3000, 1.0, 0 } })
+  {
+    const Cloud& c = *run.Points;
+    const auto ids = AllIds(c);
+    asmcore::SimplifyParameters parameters;
+    parameters.Mode = asmcore::SimplifyMode::Paper;
+    parameters.NumberOfSamples = run.Target;
+    parameters.CellSize = run.CellSize;
+    parameters.SamplesPerCell = 2.0;
+    const asmcore::SimplifyResult r = asmcore::Simplify(c.data(), ids, nullptr, parameters);
+    ASSERT_EQ(static_cast<Index>(r.Samples.size()), run.Target);
+    const asmcore::SimplifyResult two =
+      asmcore::Simplify(c.data(), ids, nullptr, parameters, UnevenTwoThreads());
+    ASSERT_EQ(r.Members, two.Members) << "target " << run.Target;
+    std::vector<int> seen(ids.size(), 0);
+    Index joined = 0, far = 0;
+    std::vector<Index> ownerOf(ids.size(), -1);
+    for (Index s = 0; s < static_cast<Index>(r.Samples.size()); ++s)
+    {
+      const asmcore::Sample& sample = r.Samples[s];
+      for (Index m = sample.MemberBegin; m < sample.MemberBegin + sample.ClusterSize; ++m)
+      {
+        const double* p = c.data() + 3 * r.Members[m];
+        ++seen[r.Members[m]];
+        ownerOf[r.Members[m]] = s;
+        if (m < sample.MemberBegin + sample.CoreSize)
+        {
+          continue;
+        }
+        // The nearest sample by brute force (ties: the first).
+        Index best = -1;
+        double bestD = 0.0;
+        for (Index t = 0; t < static_cast<Index>(r.Samples.size()); ++t)
+        {
+          const double* q = r.Samples[t].Position;
+          const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+          const double d = dx * dx + dy * dy + dz * dz;
+          if (best < 0 || d < bestD)
+          {
+            best = t;
+            bestD = d;
+          }
+        }
+        ASSERT_EQ(s, best) << "target " << run.Target << ": point " << r.Members[m];
+        ++joined;
+        far += bestD > 0.25 * r.CellSize * r.CellSize ? 1 : 0;
+      }
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }))
+      << "the members partition the points";
+    // The cases reach the branches: points joined within half a cell of
+    // their sample, and the outliers beyond.
+    EXPECT_GT(joined - far, 1) << "target " << run.Target;
+    EXPECT_GE(far, run.Outliers) << "target " << run.Target;
+    const Index n = static_cast<Index>(ids.size());
+    for (Index o = n - (run.Points == &sphere ? 3 : 2); o < n; ++o)
+    {
+      const asmcore::Sample& sample = r.Samples[ownerOf[o]];
+      EXPECT_EQ(std::count(r.Members.begin() + sample.MemberBegin,
+                  r.Members.begin() + sample.MemberBegin + sample.CoreSize, o), 0)
+        << "point " << o << " placed no sample";
+    }
+  }
 }
 
 TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
