@@ -163,7 +163,8 @@ namespace occupancy
 // Counting sort of the points by dense cell number `cell[i]` (of ids[i]),
 // stable: in each cell, points keep the order of `ids`, then ties by id.
 // Fills grid.CellStart and grid.Order; grid.CellKey is set.
-void SortIntoCells(const std::vector<Index>& ids, const std::vector<std::uint64_t>& cell,
+template <typename CellNumber>
+void SortIntoCells(const std::vector<Index>& ids, const std::vector<CellNumber>& cell,
   CellGrid& grid, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
@@ -202,7 +203,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
   CellGrid grid;
   grid.Spec = marks.Spec;
   const OccupancyBitmap& bitmap = marks.Bitmap;
-  std::vector<std::uint64_t>& cell = marks.Cell;
+  std::vector<std::uint32_t>& cell = marks.Cell;
   // The cells in key order, and each point's dense cell number.
   std::vector<Index> rank(static_cast<std::size_t>(bitmap.Words) + 1, 0);
   for (Index w = 0; w < bitmap.Words; ++w)
@@ -225,7 +226,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
     {
       const std::uint64_t lin = cell[i];
       const std::uint64_t below = (std::uint64_t(1) << (lin & 63)) - 1;
-      cell[i] = static_cast<std::uint64_t>(rank[lin >> 6]) + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below);
+      cell[i] = static_cast<std::uint32_t>(rank[lin >> 6] + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below));
     }
   });
   SortIntoCells(ids, cell, grid, execution);
@@ -253,7 +254,6 @@ CellGrid BuildCellGrid(
   // Grids too large for a bitmap: the occupied cells in a hash table.
   CellGrid grid;
   grid.Spec = spec;
-  std::vector<std::uint64_t> cell(static_cast<std::size_t>(n));
   KeyTable table;
   InsertKeys(xyz, ids, spec, table);
   grid.CellKey = table.SortedKeys();
@@ -261,16 +261,29 @@ CellGrid BuildCellGrid(
   {
     table.ValueOf(grid.CellKey[c]) = static_cast<Index>(c);
   }
-  execution.Run(0, n, [&](Index b, Index e) {
-    const FastCellOf cellOf(spec);
-    for (Index i = b; i < e; ++i)
-    {
-      std::uint64_t ijk[3];
-      cellOf(xyz + 3 * ids[i], ijk);
-      cell[i] = static_cast<std::uint64_t>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
-    }
-  });
-  SortIntoCells(ids, cell, grid, execution);
+  // Dense cell numbers: 32 bits unless there are 2^32 cells or more.
+  auto sort = [&](auto number) {
+    using CellNumber = decltype(number);
+    std::vector<CellNumber> cell(static_cast<std::size_t>(n));
+    execution.Run(0, n, [&](Index b, Index e) {
+      const FastCellOf cellOf(spec);
+      for (Index i = b; i < e; ++i)
+      {
+        std::uint64_t ijk[3];
+        cellOf(xyz + 3 * ids[i], ijk);
+        cell[i] = static_cast<CellNumber>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
+      }
+    });
+    SortIntoCells(ids, cell, grid, execution);
+  };
+  if (grid.CellKey.size() <= std::numeric_limits<std::uint32_t>::max())
+  {
+    sort(std::uint32_t(0));
+  }
+  else
+  {
+    sort(std::uint64_t(0));
+  }
   return grid;
 }
 

@@ -279,9 +279,10 @@ inline void InsertKeys(const double* xyz, const std::vector<Index>& ids, const G
 }
 
 // Marks the cells of the points in the bitmap; also stores each point's
-// linear cell number in `linear` when not null.
+// linear cell number in `linear` when not null (the bitmap then has fewer
+// than 2^32 bits).
 inline void MarkCells(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec,
-  OccupancyBitmap& bitmap, std::uint64_t* linear, const Execution& execution)
+  OccupancyBitmap& bitmap, std::uint32_t* linear, const Execution& execution)
 {
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
     const FastCellOf cellOf(spec); // a local copy: registers, no aliasing with the stores
@@ -295,7 +296,7 @@ inline void MarkCells(const double* xyz, const std::vector<Index>& ids, const Gr
       const std::uint64_t lin = ijk[0] + numbering.D0 * ijk[1] + numbering.D01 * ijk[2];
       if (linear)
       {
-        linear[i] = lin;
+        linear[i] = static_cast<std::uint32_t>(lin);
       }
       if (lin != last)
       {
@@ -314,7 +315,7 @@ struct CellMarks
 {
   GridSpec Spec;
   OccupancyBitmap Bitmap;
-  std::vector<std::uint64_t> Cell; // per point: linear cell number
+  std::vector<std::uint32_t> Cell; // per point: linear cell number (half the memory of 64 bits)
   bool Valid = false;
 
   // False (and nothing marked) when the grid is too large for a bitmap.
@@ -323,7 +324,8 @@ struct CellMarks
   {
     this->Valid = false;
     const Index n = static_cast<Index>(ids.size());
-    if (n == 0 || !this->Bitmap.Init(spec, n))
+    if (n == 0 || !this->Bitmap.Init(spec, n) ||
+      this->Bitmap.Words > static_cast<Index>((std::uint64_t(1) << 32) / 64))
     {
       return false;
     }

@@ -127,47 +127,31 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
 
 // The sample nearest to each of the points xyz[3 * points[i]] (ties: the
 // lower sample index), searched in the 3 x 3 x 3 block of cells around the
-// point's cell `cellOf[i]` (ascending): cell c owns samples
-// [sampleStart[c], sampleStart[c + 1]), which lie in its box. A neighbouring
-// cell whose box is farther than the best sample so far is skipped, and a
-// sample found within a cell's edge of its point is the nearest of all (any
-// cell outside the block is farther); the other points, and those of a
-// block holding very many samples, are left at -1 in `owner` for a global
-// search.
+// point's cell: runs[r] = (c, i) says that the points from i to the next
+// run's lie in cell c (the last run ends at points.size()). Cell c owns
+// samples [sampleStart[c], sampleStart[c + 1]), which lie in its box. A
+// neighbouring cell whose box is farther than the best sample so far is
+// skipped, and a sample found within a cell's edge of its point is the
+// nearest of all (any cell outside the block is farther); the other points,
+// and those of a block holding very many samples, are left at -1 in `owner`
+// for a global search.
 void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
   const std::vector<Index>& sampleStart, const SimplifyResult& result,
-  const std::vector<Index>& points, const std::vector<Index>& cellOf, std::vector<Index>& owner,
-  const Execution& execution)
+  const std::vector<Index>& points, const std::vector<std::pair<Index, Index>>& runs,
+  std::vector<Index>& owner, const Execution& execution)
 {
   const Index n = static_cast<Index>(points.size());
   const double h = grid.Spec.CellSize;
   // A margin far above the rounding of the positions (relative to their
   // magnitude: georeferenced clouds) and of the cell boxes.
   const double accept = h * h * (1.0 - 1e-6);
-  std::vector<Index> runStart; // runs of points of one cell
-  for (Index i = 0; i < n; ++i)
-  {
-    if (i == 0 || cellOf[i] != cellOf[i - 1])
-    {
-      runStart.push_back(i);
-    }
-  }
-  const Index runs = static_cast<Index>(runStart.size());
-  runStart.push_back(n);
-  // The positions side by side: a cell's samples in a few cache lines.
-  const Index samples = static_cast<Index>(result.Samples.size());
-  std::vector<double> position(static_cast<std::size_t>(3 * samples));
-  execution.Run(0, samples, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      std::copy_n(result.Samples[s].Position, 3, &position[3 * s]);
-    }
-  });
-  execution.Run(0, runs, [&](Index b, Index e) {
+  execution.Run(0, static_cast<Index>(runs.size()), [&](Index b, Index e) {
     Index ring[27];
     for (Index r = b; r < e; ++r)
     {
-      const Index c = cellOf[runStart[r]];
+      const Index c = runs[r].first;
+      const Index first = runs[r].second;
+      const Index last = r + 1 < static_cast<Index>(runs.size()) ? runs[r + 1].second : n;
       CellNeighborsOf(grid, c, ring);
       Index ringSamples = 0;
       for (Index nb : ring)
@@ -176,7 +160,7 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
       }
       if (ringSamples > 4 * LargeRingSamples)
       {
-        std::fill(owner.begin() + runStart[r], owner.begin() + runStart[r + 1], Index(-1));
+        std::fill(owner.begin() + first, owner.begin() + last, Index(-1));
         continue;
       }
       std::int64_t ijk[3];
@@ -187,7 +171,7 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
         lo[a] = grid.Spec.Origin[a] + h * static_cast<double>(ijk[a]);
         shrink[a] = 1e-9 * h + 1e-12 * std::abs(lo[a]);
       }
-      for (Index i = runStart[r]; i < runStart[r + 1]; ++i)
+      for (Index i = first; i < last; ++i)
       {
         const double* p = xyz + 3 * points[i];
         if (i + 8 < n)
@@ -210,7 +194,7 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
         auto scan = [&](Index cell) {
           for (Index s = sampleStart[cell]; s < sampleStart[cell + 1]; ++s)
           {
-            const double* t = &position[3 * s];
+            const double* t = result.Samples[s].Position;
             // As the k-d tree computes it (Neighbors.cxx): the same ties.
             const double dx = t[0] - p[0], dy = t[1] - p[1], dz = t[2] - p[2];
             const double d = dx * dx + dy * dy + dz * dz;
@@ -261,7 +245,8 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
       ? result.Samples[last].MemberBegin + result.Samples[last].ClusterSize
       : grid.CellStart[c];
   };
-  std::vector<Index> unclaimed, cellOf;
+  std::vector<Index> unclaimed;
+  std::vector<std::pair<Index, Index>> runs; // (cell, first position in unclaimed)
   bool haloDropped = false;
   for (Index c = 0; c < cells; ++c)
   {
@@ -269,8 +254,11 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
     {
       if (haloSlot.empty() || !haloSlot[slot])
       {
+        if (runs.empty() || runs.back().first != c)
+        {
+          runs.emplace_back(c, static_cast<Index>(unclaimed.size()));
+        }
         unclaimed.push_back(result.Members[slot]);
-        cellOf.push_back(c);
       }
       else
       {
@@ -297,7 +285,7 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
     return;
   }
   std::vector<Index> owner(unclaimed.size());
-  NearestSamplesInRing(xyz, grid, sampleStart, result, unclaimed, cellOf, owner, execution);
+  NearestSamplesInRing(xyz, grid, sampleStart, result, unclaimed, runs, owner, execution);
   std::vector<Index> far; // positions in `unclaimed` left to the global search
   for (std::size_t i = 0; i < owner.size(); ++i)
   {
@@ -348,33 +336,20 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
       }
     });
   }
-  // Lay the members out again: each sample's own, then those that joined it.
-  std::vector<Index> extra(static_cast<std::size_t>(samples) + 1, 0);
+  // Lay the members out again, in place: each sample's own, then those that
+  // joined it (in slot order). The own blocks keep their order, so those
+  // moving towards the front move in increasing order and the others in
+  // decreasing order, each into room already vacated (the unclaimed ids are
+  // copied out); then the joined points fill the room left after each block.
+  std::vector<Index> begin(static_cast<std::size_t>(samples) + 1, 0);
   for (Index o : owner)
   {
-    ++extra[o + 1];
+    ++begin[o + 1]; // joined points per sample
   }
   for (Index s = 0; s < samples; ++s)
   {
-    extra[s + 1] += extra[s]; // offsets into the joined points, by sample
+    begin[s + 1] += begin[s] + result.Samples[s].ClusterSize;
   }
-  std::vector<Index> joined(unclaimed.size());
-  {
-    std::vector<Index> fill(extra.begin(), extra.end() - 1);
-    for (std::size_t i = 0; i < unclaimed.size(); ++i)
-    {
-      joined[fill[owner[i]]++] = unclaimed[i];
-    }
-  }
-  std::vector<Index> begin(static_cast<std::size_t>(samples) + 1, 0);
-  for (Index s = 0; s < samples; ++s)
-  {
-    begin[s + 1] = begin[s] + result.Samples[s].ClusterSize + (extra[s + 1] - extra[s]);
-  }
-  // In place: the own blocks keep their order, so those moving towards the
-  // front move in increasing order and the others in decreasing order, each
-  // into room already vacated (the unclaimed ids are copied out); then the
-  // joined points fill the room left after each block.
   std::vector<Index>& members = result.Members;
   for (Index s = 0; s < samples; ++s)
   {
@@ -385,27 +360,26 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
         members.begin() + sample.MemberBegin + sample.ClusterSize, members.begin() + begin[s]);
     }
   }
-  for (Index s = samples - 1; s >= 0; --s)
+  const Index end = begin[samples];
+  for (Index s = samples - 1, next = end; s >= 0; --s)
   {
-    const Sample& sample = result.Samples[s];
+    Sample& sample = result.Samples[s];
     if (begin[s] > sample.MemberBegin)
     {
       std::copy_backward(members.begin() + sample.MemberBegin,
         members.begin() + sample.MemberBegin + sample.ClusterSize,
         members.begin() + begin[s] + sample.ClusterSize);
     }
+    sample.MemberBegin = begin[s];
+    begin[s] += sample.ClusterSize; // where its joined points go
+    sample.ClusterSize = next - sample.MemberBegin;
+    next = sample.MemberBegin;
   }
-  execution.Run(0, samples, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      Sample& sample = result.Samples[s];
-      std::copy(joined.begin() + extra[s], joined.begin() + extra[s + 1],
-        members.begin() + begin[s] + sample.ClusterSize);
-      sample.MemberBegin = begin[s];
-      sample.ClusterSize = begin[s + 1] - begin[s];
-    }
-  });
-  members.resize(static_cast<std::size_t>(begin[samples])); // halo points dropped
+  for (std::size_t i = 0; i < unclaimed.size(); ++i)
+  {
+    members[begin[owner[i]]++] = unclaimed[i];
+  }
+  members.resize(static_cast<std::size_t>(end)); // halo points dropped
 }
 
 std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
