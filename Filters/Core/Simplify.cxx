@@ -23,20 +23,28 @@ namespace
 // sample search of its unclaimed points to a k-d tree (bounded work).
 constexpr Index LargeRingSamples = 128;
 
-// A group of a cell's points (local indices) that becomes one sample.
-struct Group
+// The groups of a cell's points (local indices) that become its samples,
+// and per group the extreme point a key group stands for (-1: none).
+struct Groups
 {
-  std::vector<Index> Members;
-  Index Extreme = -1; // key groups: the extreme point it stands for
+  Clusters Members;
+  std::vector<Index> Extreme;
+  void Clear()
+  {
+    this->Members.Clear();
+    this->Extreme.clear();
+  }
+  Index Size() const { return this->Members.Size(); }
 };
 
 // Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
-// the groups of points that become the cell's samples. `xyz` and `points`
-// (the cell's input points) order the key clusters for the random choice.
-std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget,
-  std::uint64_t seed, const double* xyz, const Index* points)
+// the groups of points that become the cell's samples (appended to `groups`,
+// cleared first). `xyz` and `points` (the cell's input points) order the key
+// clusters for the random choice.
+void CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget, std::uint64_t seed,
+  const double* xyz, const Index* points, Groups& groups)
 {
-  std::vector<Group> groups;
+  groups.Clear();
   const Index n = static_cast<Index>(q.size());
   const Index keyCount = kc.Key.Size();
   if (budget >= n)
@@ -49,9 +57,10 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
     }
     for (Index i = 0; i < n; ++i)
     {
-      groups.push_back({ { i }, extreme[i] ? i : -1 });
+      groups.Members.Add(&i, &i + 1);
+      groups.Extreme.push_back(extreme[i] ? i : -1);
     }
-    return groups;
+    return;
   }
   if (budget <= keyCount)
   {
@@ -77,52 +86,55 @@ std::vector<Group> CombineWithSampling(const LocalPoints& q, KeyClusters& kc, In
     std::sort(pick.begin(), pick.end());
     for (Index k : pick)
     {
-      groups.push_back({ { kc.Key.Begin(k), kc.Key.End(k) }, kc.Extreme[k] });
+      groups.Members.Add(kc.Key.Begin(k), kc.Key.End(k));
+      groups.Extreme.push_back(kc.Extreme[k]);
     }
-    return groups;
+    return;
   }
   // §3.3 (iii): all key points, and N_c - C_n samples from the middle band.
+  // When the bands hold most of the cell, the points farthest from each key
+  // cluster's extreme are peeled off as single samples (its key point only
+  // moves towards the extreme), until the budget can be met.
   Index wanted = budget - keyCount;
-  for (Index k = 0; k < keyCount; ++k)
-  {
-    groups.push_back({ { kc.Key.Begin(k), kc.Key.End(k) }, kc.Extreme[k] });
-  }
   Index shortfall = wanted - static_cast<Index>(kc.Middle.size());
   if (shortfall > 0)
   {
-    // The bands hold most of the cell: peel the points farthest from each
-    // key cluster's extreme off as single samples (its key point only moves
-    // towards the extreme), until the budget can be met.
-    std::vector<Group> peeled;
-    for (Index k = 0; k < keyCount && shortfall > 0; ++k)
+    wanted = static_cast<Index>(kc.Middle.size()); // the rest are peeled points
+  }
+  std::vector<Index> peeled;
+  std::vector<Index>& members = groups.Members.Members;
+  for (Index k = 0; k < keyCount; ++k)
+  {
+    const auto first = static_cast<std::ptrdiff_t>(members.size());
+    members.insert(members.end(), kc.Key.Begin(k), kc.Key.End(k));
+    if (shortfall > 0)
     {
-      std::vector<Index>& members = groups[k].Members;
-      const Eigen::Vector3d e = q[groups[k].Extreme];
-      std::sort(members.begin(), members.end(), [&](Index a, Index b) {
+      const Eigen::Vector3d e = q[kc.Extreme[k]];
+      std::sort(members.begin() + first, members.end(), [&](Index a, Index b) {
         const double da = (q[a] - e).squaredNorm(), db = (q[b] - e).squaredNorm();
         return da < db || (da == db && a < b);
       });
-      const Index peel = std::min<Index>(shortfall, static_cast<Index>(members.size()) - 1);
+      const Index peel = std::min<Index>(shortfall, static_cast<Index>(members.size() - first) - 1);
       for (Index p = 0; p < peel; ++p)
       {
-        peeled.push_back({ { members.back() }, -1 });
+        peeled.push_back(members.back());
         members.pop_back();
       }
       shortfall -= peel;
     }
-    groups.insert(groups.end(), peeled.begin(), peeled.end());
-    wanted = static_cast<Index>(kc.Middle.size());
+    groups.Members.Offsets.push_back(static_cast<Index>(members.size()));
+    groups.Extreme.push_back(kc.Extreme[k]);
+  }
+  for (Index p : peeled)
+  {
+    groups.Members.Add(&p, &p + 1);
+    groups.Extreme.push_back(-1);
   }
   if (wanted > 0)
   {
-    Clusters middle;
-    SplitInPlane(q, kc.Middle.data(), kc.Middle.data() + kc.Middle.size(), wanted, middle);
-    for (Index k = 0; k < middle.Size(); ++k)
-    {
-      groups.push_back({ { middle.Begin(k), middle.End(k) }, -1 });
-    }
+    SplitInPlane(q, kc.Middle.data(), kc.Middle.data() + kc.Middle.size(), wanted, groups.Members);
+    groups.Extreme.resize(static_cast<std::size_t>(groups.Size()), -1);
   }
-  return groups;
 }
 
 // The sample nearest to each of the points xyz[3 * points[i]] (ties: the
@@ -591,6 +603,8 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
     std::vector<Index> cellPoints;
+    Groups groups;
+    std::vector<char> grouped;
     for (Index c = b; c < e; ++c)
     {
       if (budget[c] == 0)
@@ -603,20 +617,21 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
       const Index* points = cellPoints.data();
       const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(xyz, points, n);
       KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
-      const std::vector<Group> groups =
-        CombineWithSampling(q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), xyz, points);
+      CombineWithSampling(
+        q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), xyz, points, groups);
 
       Index memberCursor = grid.CellStart[c];
       Index sampleIndex = sampleStart[c];
-      for (const Group& group : groups)
+      for (Index g = 0; g < groups.Size(); ++g)
       {
         Sample& s = result.Samples[sampleIndex++];
-        const Index* first = group.Members.data();
-        const Index* last = first + group.Members.size();
+        const Index* first = groups.Members.Begin(g);
+        const Index* last = groups.Members.End(g);
+        const Index extreme = groups.Extreme[g];
         const Eigen::Vector3d local = Centroid(q, first, last);
         const Index nearest = NearestMember(q, first, last, local);
         // A single point, or a snapped sample, is an input point exactly.
-        const Eigen::Vector3d world = (parameters.Snap || group.Members.size() == 1)
+        const Eigen::Vector3d world = (parameters.Snap || last - first == 1)
           ? Eigen::Vector3d(xyz[3 * points[nearest]], xyz[3 * points[nearest] + 1],
               xyz[3 * points[nearest] + 2])
           : Eigen::Vector3d(frame.Centroid + frame.Axes * local);
@@ -625,9 +640,9 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
         if (normals)
         {
           Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-          for (Index m : group.Members)
+          for (const Index* m = first; m != last; ++m)
           {
-            const double* nm = normals + 3 * points[m];
+            const double* nm = normals + 3 * points[*m];
             const Eigen::Vector3d v(nm[0], nm[1], nm[2]);
             if (v.allFinite())
             {
@@ -650,30 +665,27 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
         }
         s.Representative = points[nearest];
         s.MemberBegin = memberCursor;
-        s.ClusterSize = static_cast<Index>(group.Members.size());
+        s.ClusterSize = static_cast<Index>(last - first);
         s.CoreSize = s.ClusterSize;
         s.SurfaceVariation = frame.SurfaceVariation();
-        s.Key = group.Extreme >= 0;
+        s.Key = extreme >= 0;
         if (s.Key)
         {
           const Eigen::Vector3d rep = parameters.Snap ? q[nearest] : local;
-          s.KeyError = (rep - q[group.Extreme]).norm();
+          s.KeyError = (rep - q[extreme]).norm();
         }
-        for (Index m : group.Members)
+        for (const Index* m = first; m != last; ++m)
         {
-          result.Members[memberCursor++] = points[m];
+          result.Members[memberCursor++] = points[*m];
         }
       }
       if (memberCursor < grid.CellStart[c + 1])
       {
         // Points in no group (§3.3 iv): unclaimed, after the cell's samples.
-        std::vector<char> grouped(static_cast<std::size_t>(n), 0);
-        for (const Group& group : groups)
+        grouped.assign(static_cast<std::size_t>(n), 0);
+        for (Index m : groups.Members.Members)
         {
-          for (Index m : group.Members)
-          {
-            grouped[m] = 1;
-          }
+          grouped[m] = 1;
         }
         for (Index i = 0; i < n; ++i)
         {
