@@ -179,7 +179,7 @@ std::vector<long> ParseList(const char* s)
 }
 
 // The core's stages one by one, one thread (mirrors asmcore::Simplify).
-void TimeStages(vtkPolyData* input, double fraction)
+void TimeStages(vtkPolyData* input, double fraction, int mode)
 {
   using namespace asmcore;
   double t0 = Cpu();
@@ -253,6 +253,10 @@ void TimeStages(vtkPolyData* input, double fraction)
     SimplifyParameters parameters;
     parameters.NumberOfSamples = target;
     parameters.CoordinateEpsilon = 1.2e-7;
+    if (mode == vtkASMSimplify::PAPER)
+    {
+      parameters.Mode = asmcore::SimplifyMode::Paper;
+    }
     const double c0 = Cpu();
     const SimplifyResult result = Simplify(xyz, ids, nullptr, parameters, counting);
     const double total = Cpu() - c0;
@@ -331,7 +335,7 @@ int main(int argc, char* argv[])
     }
     const vtkIdType np = input->GetNumberOfPoints();
     if (stages)
-      TimeStages(input, fraction);
+      TimeStages(input, fraction, mode);
     for (long t : threads)
     {
       vtkSMPTools::Initialize(static_cast<int>(t));

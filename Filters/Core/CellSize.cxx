@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numeric>
 
 namespace asmcore
@@ -132,7 +133,8 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
   const Index n = static_cast<Index>(ids.size());
   const Index blocks = BlockCount(n, 64, 1 << 15);
   std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
-  std::vector<unsigned char> picked(static_cast<std::size_t>(n));
+  // (Written before it is read: no serial zero fill.)
+  std::unique_ptr<unsigned char[]> picked(new unsigned char[static_cast<std::size_t>(n)]);
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
@@ -183,7 +185,9 @@ double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bo
     return 0.0;
   }
   std::vector<Index> subsetIds(subset.size() / 3);
-  std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
+  execution.Run(0, static_cast<Index>(subsetIds.size()), [&](Index b, Index e) {
+    std::iota(subsetIds.begin() + b, subsetIds.begin() + e, b);
+  });
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));
   });
@@ -240,7 +244,7 @@ CellGrid BuildAutomaticCellGrid(const double* xyz, const std::vector<Index>& ids
   CellMarks marks;
   const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(marks.Mark(xyz, ids, spec, execution)
-        ? marks.Occupied()
+        ? marks.Occupied(execution)
         : CountOccupiedCells(xyz, ids, spec, execution));
   }, start);
   const GridSpec found = GridSpec::Make(bounds, h);

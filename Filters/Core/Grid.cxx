@@ -164,8 +164,8 @@ namespace occupancy
 // stable: in each cell, points keep the order of `ids`, then ties by id.
 // Fills grid.CellStart and grid.Order; grid.CellKey is set.
 template <typename CellNumber>
-void SortIntoCells(const std::vector<Index>& ids, const std::vector<CellNumber>& cell,
-  CellGrid& grid, const Execution& execution)
+void SortIntoCells(const std::vector<Index>& ids, const CellNumber* cell, CellGrid& grid,
+  const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   const Index cells = static_cast<Index>(grid.CellKey.size());
@@ -203,7 +203,8 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
   CellGrid grid;
   grid.Spec = marks.Spec;
   const OccupancyBitmap& bitmap = marks.Bitmap;
-  std::vector<std::uint32_t>& cell = marks.Cell;
+  std::uint32_t* cell = marks.Cell.get();
+  const Index n = static_cast<Index>(ids.size());
   // The cells in key order, and each point's dense cell number.
   std::vector<Index> rank(static_cast<std::size_t>(bitmap.Words) + 1, 0);
   for (Index w = 0; w < bitmap.Words; ++w)
@@ -221,7 +222,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
       }
     }
   });
-  execution.Run(0, static_cast<Index>(cell.size()), [&](Index b, Index e) {
+  execution.Run(0, n, [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
     {
       const std::uint64_t lin = cell[i];
@@ -230,6 +231,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
     }
   });
   SortIntoCells(ids, cell, grid, execution);
+  marks.Cell.reset();
   marks.Valid = false;
   return grid;
 }
@@ -274,7 +276,7 @@ CellGrid BuildCellGrid(
         cell[i] = static_cast<CellNumber>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
       }
     });
-    SortIntoCells(ids, cell, grid, execution);
+    SortIntoCells(ids, cell.data(), grid, execution);
   };
   if (grid.CellKey.size() <= std::numeric_limits<std::uint32_t>::max())
   {
@@ -295,15 +297,10 @@ Index CountOccupiedCells(
     return 0;
   }
   OccupancyBitmap bitmap;
-  if (bitmap.Init(spec, static_cast<Index>(ids.size())))
+  if (bitmap.Init(spec, static_cast<Index>(ids.size()), execution))
   {
     MarkCells(xyz, ids, spec, bitmap, nullptr, execution);
-    Index count = 0;
-    for (Index w = 0; w < bitmap.Words; ++w)
-    {
-      count += PopCount(bitmap.Word(w));
-    }
-    return count;
+    return bitmap.Count(execution);
   }
   KeyTable table;
   InsertKeys(xyz, ids, spec, table);

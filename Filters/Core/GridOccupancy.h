@@ -107,7 +107,7 @@ class OccupancyBitmap
 {
 public:
   // False when the grid has too many cells for a bitmap of reasonable size.
-  bool Init(const GridSpec& spec, Index points)
+  bool Init(const GridSpec& spec, Index points, const Execution& execution)
   {
     const double cells = static_cast<double>(spec.Dims[0]) * static_cast<double>(spec.Dims[1]) *
       static_cast<double>(spec.Dims[2]);
@@ -121,10 +121,12 @@ public:
     const std::uint64_t total = this->D01 * static_cast<std::uint64_t>(spec.Dims[2]);
     this->Words = static_cast<Index>((total + 63) / 64);
     this->Bits.reset(new std::atomic<std::uint64_t>[static_cast<std::size_t>(this->Words)]);
-    for (Index w = 0; w < this->Words; ++w)
-    {
-      this->Bits[w].store(0, std::memory_order_relaxed);
-    }
+    execution.Run(0, this->Words, [this](Index b, Index e) {
+      for (Index w = b; w < e; ++w)
+      {
+        this->Bits[w].store(0, std::memory_order_relaxed);
+      }
+    });
     return true;
   }
   struct Numbering
@@ -146,6 +148,30 @@ public:
     }
   }
   std::uint64_t Word(Index w) const { return this->Bits[w].load(std::memory_order_relaxed); }
+  // The number of bits set (sums of fixed blocks: any cut gives it).
+  Index Count(const Execution& execution) const
+  {
+    const Index blocks = BlockCount(this->Words, 64, 1 << 14);
+    std::vector<Index> sum(static_cast<std::size_t>(blocks), 0);
+    execution.Run(0, blocks, [&](Index first, Index last) {
+      for (Index k = first; k < last; ++k)
+      {
+        Index count = 0;
+        const Index end = BlockBegin(this->Words, blocks, k + 1);
+        for (Index w = BlockBegin(this->Words, blocks, k); w < end; ++w)
+        {
+          count += PopCount(this->Word(w));
+        }
+        sum[k] = count;
+      }
+    });
+    Index total = 0;
+    for (Index count : sum)
+    {
+      total += count;
+    }
+    return total;
+  }
   std::uint64_t KeyOfLinear(std::uint64_t lin) const
   {
     const std::uint64_t z = lin / this->D01;
@@ -315,7 +341,9 @@ struct CellMarks
 {
   GridSpec Spec;
   OccupancyBitmap Bitmap;
-  std::vector<std::uint32_t> Cell; // per point: linear cell number (half the memory of 64 bits)
+  // Per point: linear cell number (half the memory of 64 bits), left
+  // uninitialised until MarkCells writes it (no serial zero fill).
+  std::unique_ptr<std::uint32_t[]> Cell;
   bool Valid = false;
 
   // False (and nothing marked) when the grid is too large for a bitmap.
@@ -324,26 +352,18 @@ struct CellMarks
   {
     this->Valid = false;
     const Index n = static_cast<Index>(ids.size());
-    if (n == 0 || !this->Bitmap.Init(spec, n) ||
+    if (n == 0 || !this->Bitmap.Init(spec, n, execution) ||
       this->Bitmap.Words > static_cast<Index>((std::uint64_t(1) << 32) / 64))
     {
       return false;
     }
     this->Spec = spec;
-    this->Cell.resize(static_cast<std::size_t>(n));
-    MarkCells(xyz, ids, spec, this->Bitmap, this->Cell.data(), execution);
+    this->Cell.reset(new std::uint32_t[static_cast<std::size_t>(n)]);
+    MarkCells(xyz, ids, spec, this->Bitmap, this->Cell.get(), execution);
     this->Valid = true;
     return true;
   }
-  Index Occupied() const
-  {
-    Index count = 0;
-    for (Index w = 0; w < this->Bitmap.Words; ++w)
-    {
-      count += PopCount(this->Bitmap.Word(w));
-    }
-    return count;
-  }
+  Index Occupied(const Execution& execution) const { return this->Bitmap.Count(execution); }
 };
 
 // The grid from valid marks (which it consumes): the second half of
