@@ -79,6 +79,9 @@ struct DisjointSets
 
 using BinKey = std::pair<std::int64_t, std::int64_t>;
 
+// Up to this many points, LinkInPlane tests every pair.
+constexpr std::size_t SmallLinkSize = 32;
+
 std::int64_t BinOf(double u, double side)
 {
   const double t = std::floor(u / side);
@@ -256,6 +259,26 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
   // connected; points closer than d lie at most two bins apart.
   const double side = 0.5 * linkDistance;
   const double d2 = linkDistance * linkDistance;
+  if (n <= SmallLinkSize)
+  {
+    // Few points (the usual band of a cell): every pair, cheaper than the
+    // bins; the same links, so the same components.
+    DisjointSets sets(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const Eigen::Vector3d& p = q[subset[i]];
+      for (std::size_t j = i + 1; j < n; ++j)
+      {
+        const Eigen::Vector3d& r = q[subset[j]];
+        const double dx = p[0] - r[0], dy = p[1] - r[1];
+        if (dx * dx + dy * dy <= d2)
+        {
+          sets.Union(static_cast<Index>(i), static_cast<Index>(j));
+        }
+      }
+    }
+    return Components(subset, sets);
+  }
   {
     DisjointSets sets(n);
     if (LinkDenseInPlane(q, subset, side, d2, sets))
