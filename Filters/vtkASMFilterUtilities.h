@@ -220,12 +220,16 @@ inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
 {
   auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
   auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    offsets->SetValue(i, i);
-    connectivity->SetValue(i, i);
-  }
-  offsets->SetValue(n, n);
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkIdType* point = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, n, [offset, point](vtkIdType first, vtkIdType last) {
+    for (vtkIdType i = first; i < last; ++i)
+    {
+      offset[i] = i;
+      point[i] = i;
+    }
+  });
+  offset[n] = n;
   auto verts = vtkSmartPointer<vtkCellArray>::New();
   verts->SetData(offsets, connectivity);
   return verts;

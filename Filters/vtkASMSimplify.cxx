@@ -294,16 +294,36 @@ int vtkASMSimplify::RequestData(
   const bool nameTaken = // by an input array that is carried (see AggregatePointData)
     inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;
   auto pcaNormals = asmvtk::NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
-  for (vtkIdType s = 0; s < count; ++s)
   {
-    const asmcore::Sample& sample = result.Samples[s];
-    points->SetPoint(s, sample.Position);
-    keyFlags->SetValue(s, sample.Key ? 1 : 0);
-    clusterSizes->SetValue(s, sample.ClusterSize);
-    variation->SetValue(s, sample.SurfaceVariation);
-    originalIds->SetValue(s,
-      distributed ? share.Cloud.SourceId[sample.Representative] : sample.Representative);
-    pcaNormals->SetTuple(s, sample.Normal);
+    // Straight into the arrays, in parallel (each sample writes its slots).
+    void* xyzOut = points->GetData()->GetVoidPointer(0);
+    unsigned char* key = keyFlags->GetPointer(0);
+    vtkIdType* size = clusterSizes->GetPointer(0);
+    double* sv = variation->GetPointer(0);
+    vtkIdType* original = originalIds->GetPointer(0);
+    float* normal = pcaNormals->GetPointer(0);
+    vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
+      for (vtkIdType s = first; s < last; ++s)
+      {
+        const asmcore::Sample& sample = result.Samples[s];
+        for (int a = 0; a < 3; ++a)
+        {
+          if (doublePrecision)
+          {
+            static_cast<double*>(xyzOut)[3 * s + a] = sample.Position[a];
+          }
+          else
+          {
+            static_cast<float*>(xyzOut)[3 * s + a] = static_cast<float>(sample.Position[a]);
+          }
+          normal[3 * s + a] = static_cast<float>(sample.Normal[a]);
+        }
+        key[s] = sample.Key ? 1 : 0;
+        size[s] = sample.ClusterSize;
+        sv[s] = sample.SurfaceVariation;
+        original[s] = distributed ? share.Cloud.SourceId[sample.Representative] : sample.Representative;
+      }
+    });
   }
   output->SetPoints(points);
   output->SetVerts(asmvtk::VertexCells(count));
