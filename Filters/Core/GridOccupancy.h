@@ -352,10 +352,11 @@ struct CellMarks
   {
     this->Valid = false;
     const Index n = static_cast<Index>(ids.size());
-    if (n == 0 || !this->Bitmap.Init(spec, n, execution) ||
-      this->Bitmap.Words > static_cast<Index>((std::uint64_t(1) << 32) / 64))
+    const double cells = static_cast<double>(spec.Dims[0]) * static_cast<double>(spec.Dims[1]) *
+      static_cast<double>(spec.Dims[2]);
+    if (n == 0 || !(cells <= 4294967296.0) || !this->Bitmap.Init(spec, n, execution))
     {
-      return false;
+      return false; // (32-bit linear cell numbers)
     }
     this->Spec = spec;
     this->Cell.reset(new std::uint32_t[static_cast<std::size_t>(n)]);

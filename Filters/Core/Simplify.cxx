@@ -19,9 +19,9 @@ namespace asmcore
 {
 namespace
 {
-// A ring of cells holding more than 4 * this many samples leaves the nearest
-// sample search of its unclaimed points to a k-d tree (bounded work).
-constexpr Index LargeRingSamples = 128;
+// A 3 x 3 x 3 block of cells holding more than this many samples leaves the
+// nearest-sample search of its unclaimed points to a k-d tree (bounded work).
+constexpr Index LargeRingSamples = 512;
 
 // The groups of a cell's points (local indices) that become its samples,
 // and per group the extreme point a key group stands for (-1: none).
@@ -170,7 +170,7 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
       {
         ringSamples += nb < 0 ? 0 : sampleStart[nb + 1] - sampleStart[nb];
       }
-      if (ringSamples > 4 * LargeRingSamples)
+      if (ringSamples > LargeRingSamples)
       {
         std::fill(owner.begin() + first, owner.begin() + last, Index(-1));
         continue;
