@@ -332,7 +332,7 @@ int vtkASMSimplify::RequestData(
   // Point data: the input's arrays aggregated, then the generated ones.
   vtkPointData* outPD = output->GetPointData();
   asmvtk::AggregatePointData(inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this);
-  std::vector<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
+  asmcore::PointArray<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
   outPD->AddArray(keyFlags);
   outPD->AddArray(clusterSizes);
   outPD->AddArray(variation);

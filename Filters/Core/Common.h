@@ -15,6 +15,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace asmcore
@@ -64,6 +68,39 @@ inline void Prefetch(const void* p)
   (void)p;
 #endif
 }
+
+/// A std::allocator that default-initialises: resize() leaves numbers
+/// uninitialised instead of zero-filling them serially. For large per-point
+/// arrays that a parallel loop writes in full before anything reads them
+/// (their pages are then first touched by that loop, on every thread).
+template <typename T>
+struct DefaultInitAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() noexcept = default;
+  template <typename U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A per-point array whose resize() does not zero-fill (DefaultInitAllocator).
+template <typename T>
+using PointArray = std::vector<T, DefaultInitAllocator<T>>;
 
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);

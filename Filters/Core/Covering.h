@@ -31,8 +31,8 @@ constexpr int CoveringCandidates = 16;
 /// `samples`; `assign` and `distance2` are left holding the assignment the
 /// round started from (AssignToSamples).
 VTKASMFILTERS_EXPORT void RefineCovering(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, SampleSet& samples, std::vector<Index>& assign,
-  std::vector<double>& distance2, const Execution& execution);
+  const CellNeighborTable& neighbors, SampleSet& samples, PointArray<Index>& assign,
+  PointArray<double>& distance2, const Execution& execution);
 } // namespace asmcore
 
 #endif

@@ -40,8 +40,8 @@ struct SampleInfo
 // Every sample gets at least one member when its ring has a point to spare:
 // the nearest point of a cluster with two or more members moves to it.
 void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, const std::vector<SampleInfo>& info, std::vector<Index>& assign,
-  std::vector<double>& distance2, std::vector<Index>& count)
+  const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<Index>& assign,
+  PointArray<double>& distance2, std::vector<Index>& count)
 {
   for (Index s = 0; s < samples.Size(); ++s)
   {
@@ -89,7 +89,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
 // with fewer samples than cells) join the nearest sample anywhere, so that
 // the clusters stay a partition of the points.
 void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count,
-  std::vector<Index>& assign, const Execution& execution)
+  PointArray<Index>& assign, const Execution& execution)
 {
   if (count == 0 || std::find(assign.begin(), assign.end(), Index(-1)) == assign.end())
   {
@@ -120,7 +120,7 @@ void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info
     output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
   }
   std::vector<Sample> samples;
-  std::vector<Index> members;
+  PointArray<Index> members;
   for (std::size_t s = 0; s < result.Samples.size(); ++s)
   {
     if (!output[info[s].Owner])
@@ -188,7 +188,9 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   grid.CellStart = original.CellStart;
   grid.CellKey = original.CellKey;
   grid.Order.resize(static_cast<std::size_t>(total));
-  std::iota(grid.Order.begin(), grid.Order.end(), Index(0));
+  execution.Run(0, total, [&](Index b, Index e) {
+    std::iota(grid.Order.begin() + b, grid.Order.begin() + e, b);
+  });
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
@@ -292,8 +294,8 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   }
 
   // 5. Cross-cell refinement.
-  std::vector<Index> assign;
-  std::vector<double> distance2;
+  PointArray<Index> assign;
+  PointArray<double> distance2;
   for (int it = 0; it < CrossIterations(parameters); ++it)
   {
     AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
@@ -357,16 +359,16 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   // The cell-ordered copy, its identity order and the distances are done
   // with: released before the members and the samples are laid out (the
   // peak memory of a run).
-  std::vector<double>().swap(distance2);
+  PointArray<double>().swap(distance2);
   cellOrdered.reset();
-  std::vector<Index>().swap(grid.Order);
+  PointArray<Index>().swap(grid.Order);
   P = nullptr;
   // The members of each sample, in slot order.
   std::vector<Index> memberStart;
   GroupBy(
     total, count, [&](Index i) { return assign[i]; }, [&](Index i) { return original.Order[i]; },
     memberStart, result.Members, execution);
-  std::vector<Index>().swap(assign);
+  PointArray<Index>().swap(assign);
   if (abort(0.9))
   {
     return result;

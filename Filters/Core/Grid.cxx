@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace asmcore
 {
@@ -289,6 +290,60 @@ CellGrid BuildCellGrid(
   return grid;
 }
 
+namespace
+{
+// The number of distinct cells of the points, for grids too large for a
+// bitmap: the points' keys are computed in parallel, then each of a fixed
+// number of partitions (by a hash of the key, not the table's) counts its
+// keys in a table of its own, a sixteenth of the size.
+Index CountDistinctCells(
+  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+{
+  const Index n = static_cast<Index>(ids.size());
+  std::unique_ptr<std::uint64_t[]> key(new std::uint64_t[static_cast<std::size_t>(n)]);
+  execution.Run(0, n, [&](Index b, Index e) {
+    const FastCellOf cellOf(spec);
+    for (Index i = b; i < e; ++i)
+    {
+      std::uint64_t ijk[3];
+      cellOf(xyz + 3 * ids[i], ijk);
+      key[i] = (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
+    }
+  });
+  constexpr Index Partitions = 16;
+  auto partitionOf = [](std::uint64_t k) {
+    k ^= k >> 33;
+    k *= 0xFF51AFD7ED558CCDULL;
+    k ^= k >> 33;
+    return static_cast<Index>(k & (Partitions - 1));
+  };
+  std::vector<Index> count(static_cast<std::size_t>(Partitions), 0);
+  execution.Run(0, Partitions, [&](Index first, Index last) {
+    for (Index part = first; part < last; ++part)
+    {
+      KeyTable table;
+      std::uint64_t previous = KeyTable::Empty;
+      for (Index i = 0; i < n; ++i)
+      {
+        const std::uint64_t k = key[i];
+        if (k != previous && partitionOf(k) == part)
+        {
+          table.Insert(k);
+        }
+        previous = k;
+      }
+      count[part] = table.Size();
+    }
+  });
+  Index total = 0;
+  for (Index c : count)
+  {
+    total += c;
+  }
+  return total;
+}
+} // namespace
+
 Index CountOccupiedCells(
   const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
 {
@@ -302,8 +357,6 @@ Index CountOccupiedCells(
     MarkCells(xyz, ids, spec, bitmap, nullptr, execution);
     return bitmap.Count(execution);
   }
-  KeyTable table;
-  InsertKeys(xyz, ids, spec, table);
-  return table.Size();
+  return CountDistinctCells(xyz, ids, spec, execution);
 }
 } // namespace asmcore

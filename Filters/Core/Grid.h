@@ -81,7 +81,7 @@ struct VTKASMFILTERS_EXPORT GridSpec
 struct VTKASMFILTERS_EXPORT CellGrid
 {
   GridSpec Spec;
-  std::vector<Index> Order;          ///< point ids sorted by (cell key, id)
+  PointArray<Index> Order;           ///< point ids sorted by (cell key, id)
   std::vector<Index> CellStart;      ///< cell c holds Order[CellStart[c], CellStart[c+1])
   std::vector<std::uint64_t> CellKey; ///< key of each non-empty cell, ascending
 

@@ -34,7 +34,7 @@ Index CellOfSample(const SampleSet& samples, Index s)
 // so that the smallest spreads are the largest values. A maximum does not
 // depend on the order of its terms: the points are cut in blocks that raise
 // shared per-sample maxima atomically.
-std::vector<double> NegatedSpreads(const std::vector<Index>& assign, const std::vector<double>& distance2,
+std::vector<double> NegatedSpreads(const PointArray<Index>& assign, const PointArray<double>& distance2,
   const SampleSet& samples, const Execution& execution)
 {
   const Index count = samples.Size();
@@ -74,7 +74,7 @@ std::vector<double> NegatedSpreads(const std::vector<Index>& assign, const std::
 } // namespace
 
 Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const std::vector<Index>& assign, const std::vector<double>& distance2, Index maxMoves,
+  const PointArray<Index>& assign, const PointArray<double>& distance2, Index maxMoves,
   SampleSet& samples, std::vector<Index>& order, const Execution& execution, Index firstBatch)
 {
   const Index count = samples.Size();
@@ -234,6 +234,8 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   // shorten the nearest-neighbour distances).
   Index moves = 0;
   Index next = 0;
+  std::vector<Index> movedSamples;
+  std::vector<char> wasMoved(static_cast<std::size_t>(count), 0);
   for (Index g : gaps)
   {
     for (int tries = 0; tries < 8; ++tries)
@@ -279,6 +281,8 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       }
       std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
       owner[s] = CellOfSlot(grid, g);
+      movedSamples.push_back(s);
+      wasMoved[s] = 1;
       for (int r = 0; r < 27; ++r)
       {
         const Index nb = neighbors.Of(CellOfSample(samples, s))[r];
@@ -295,10 +299,38 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     return 0;
   }
-  // Regroup by owner cell (stable: the order within a cell is kept).
-  GroupBy(
-    count, cells, [&](Index s) { return owner[s]; }, [](Index s) { return s; }, samples.Start, order,
-    execution);
+  // Regroup by owner cell, stably (the order within a cell is kept): the
+  // samples that stayed are in owner order already; the moved ones, sorted
+  // by (owner, index), are merged in.
+  auto before = [&](Index a, Index b) { return owner[a] < owner[b] || (owner[a] == owner[b] && a < b); };
+  std::sort(movedSamples.begin(), movedSamples.end(), before);
+  std::vector<Index> stayed;
+  stayed.reserve(static_cast<std::size_t>(count - moves));
+  for (Index s = 0; s < count; ++s)
+  {
+    if (!wasMoved[s])
+    {
+      stayed.push_back(s);
+    }
+  }
+  std::merge(stayed.begin(), stayed.end(), movedSamples.begin(), movedSamples.end(), order.begin(), before);
+  // Cell c starts after the samples owned by earlier cells: its old start,
+  // less the moved samples that left an earlier cell, plus those that
+  // joined one.
+  std::vector<Index> left(movedSamples.size()), joined(movedSamples.size());
+  for (std::size_t k = 0; k < movedSamples.size(); ++k)
+  {
+    left[k] = CellOfSample(samples, movedSamples[k]);
+    joined[k] = owner[movedSamples[k]];
+  }
+  std::sort(left.begin(), left.end()); // (joined is sorted already)
+  execution.Run(0, cells + 1, [&](Index b, Index e) {
+    for (Index c = b; c < e; ++c)
+    {
+      samples.Start[c] += (std::lower_bound(joined.begin(), joined.end(), c) - joined.begin()) -
+        (std::lower_bound(left.begin(), left.end(), c) - left.begin());
+    }
+  });
   std::vector<double> position(samples.Position.size());
   std::vector<char> fixed(samples.Fixed.size());
   execution.Run(0, count, [&](Index b, Index e) {

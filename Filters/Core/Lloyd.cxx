@@ -132,7 +132,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
 }
 
 void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const std::vector<Index>& assign, SampleSet& samples, const Execution& execution)
+  const PointArray<Index>& assign, SampleSet& samples, const Execution& execution)
 {
   std::vector<double> next(samples.Position);
   // The points assigned to a cell's samples lie in its ring (the assignment

@@ -54,9 +54,8 @@ void SortRanked(std::vector<RankedValue>& values, const Execution& execution)
   }
 }
 
-std::vector<Index> LargestFinite(const std::vector<double>& values, Index look, const Execution& execution)
+std::vector<Index> LargestFinite(const double* values, Index n, Index look, const Execution& execution)
 {
-  const Index n = static_cast<Index>(values.size());
   std::vector<Index> largest;
   if (look <= 0 || n == 0)
   {

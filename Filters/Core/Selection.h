@@ -26,11 +26,19 @@ inline bool RanksBefore(const RankedValue& a, const RankedValue& b)
 /// Sorts `values` by RanksBefore: blocks sorted in parallel, then merged.
 VTKASMFILTERS_EXPORT void SortRanked(std::vector<RankedValue>& values, const Execution& execution);
 
-/// The indices of the `look` largest finite values (fewer if there are fewer
-/// finite values), largest first, ties by lower index. Infinite and NaN values
-/// are never chosen.
+/// The indices of the `look` largest finite values of values[0, n) (fewer if
+/// there are fewer finite values), largest first, ties by lower index.
+/// Infinite and NaN values are never chosen.
 VTKASMFILTERS_EXPORT std::vector<Index> LargestFinite(
-  const std::vector<double>& values, Index look, const Execution& execution);
+  const double* values, Index n, Index look, const Execution& execution);
+
+/// LargestFinite of a whole array.
+template <typename Allocator>
+std::vector<Index> LargestFinite(
+  const std::vector<double, Allocator>& values, Index look, const Execution& execution)
+{
+  return LargestFinite(values.data(), static_cast<Index>(values.size()), look, execution);
+}
 } // namespace asmcore
 
 #endif

@@ -283,7 +283,7 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
     if (haloDropped)
     {
       // Only halo points were left out: close the gaps.
-      std::vector<Index> members;
+      PointArray<Index> members;
       members.reserve(static_cast<std::size_t>(total));
       for (Sample& s : result.Samples)
       {
@@ -362,7 +362,7 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
   {
     begin[s + 1] += begin[s] + result.Samples[s].ClusterSize;
   }
-  std::vector<Index>& members = result.Members;
+  PointArray<Index>& members = result.Members;
   for (Index s = 0; s < samples; ++s)
   {
     const Sample& sample = result.Samples[s];

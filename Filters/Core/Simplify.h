@@ -143,7 +143,7 @@ struct VTKASMFILTERS_EXPORT Sample
 struct VTKASMFILTERS_EXPORT SimplifyResult
 {
   std::vector<Sample> Samples;
-  std::vector<Index> Members; ///< input point ids, grouped by sample: a partition of `ids`
+  PointArray<Index> Members; ///< input point ids, grouped by sample: a partition of `ids`
   double CellSize = 0.0;
   Index NumberOfCells = 0; ///< non-empty grid cells
   Index NumberOfKeyPoints = 0;

@@ -104,6 +104,11 @@ TEST(FastPaths, GridMatchesDefinitionOnBitmapAndHashPaths)
     EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, spec), reference.NumberOfCells());
     EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, spec, UnevenTwoThreads()),
       reference.NumberOfCells());
+    // Every cell twice, its points far apart in the order: counted once.
+    std::vector<Index> twice(ids);
+    twice.insert(twice.end(), ids.rbegin(), ids.rend());
+    EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), twice, spec, UnevenTwoThreads()),
+      reference.NumberOfCells());
   }
 }
 
@@ -455,8 +460,8 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
     }
     samples.Start[cell + 1] = samples.Start[cell] + n;
   }
-  std::vector<Index> assign, check;
-  std::vector<double> distance2, checkDistance2;
+  asmcore::PointArray<Index> assign, check;
+  asmcore::PointArray<double> distance2, checkDistance2;
   asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
   // Move every 17th sample onto a point of a cell 5 cells further, and
   // regroup by owner (stable), as FillHoles does.

@@ -136,8 +136,8 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
     }
     samples.Start[cell + 1] = samples.Start[cell] + n;
   }
-  std::vector<Index> assign;
-  std::vector<double> distance2;
+  asmcore::PointArray<Index> assign;
+  asmcore::PointArray<double> distance2;
   asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
   const double holeBefore = *std::max_element(distance2.begin(), distance2.end());
   const Index maxMoves = samples.Size() / 8;

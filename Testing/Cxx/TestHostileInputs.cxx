@@ -279,7 +279,8 @@ static_assert(std::is_same<decltype(asmcore::Sample::Representative), asmcore::I
     std::is_same<decltype(asmcore::Sample::MemberBegin), asmcore::Index>::value &&
     std::is_same<decltype(asmcore::Sample::ClusterSize), asmcore::Index>::value &&
     std::is_same<decltype(asmcore::SimplifyParameters::NumberOfSamples), asmcore::Index>::value &&
-    std::is_same<std::vector<asmcore::Index>, decltype(asmcore::SimplifyResult::Members)>::value,
+    std::is_same<asmcore::Index, asmcore::PointArray<asmcore::Index>::value_type>::value &&
+    std::is_same<asmcore::PointArray<asmcore::Index>, decltype(asmcore::SimplifyResult::Members)>::value,
   "the core's ids and counts are 64-bit");
 static_assert(std::is_same<decltype(std::declval<vtkASMSimplify&>().GetNumberOfOutputPoints()),
                 vtkIdType>::value,
