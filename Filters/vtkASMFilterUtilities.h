@@ -115,7 +115,8 @@ inline const double* PrepareCoordinates(
       }
       else if (out)
       {
-        const auto range = vtk::DataArrayValueRange<3>(data, begin, end);
+        // (A value range: its bounds count values, three per point.)
+        const auto range = vtk::DataArrayValueRange<3>(data, 3 * begin, 3 * end);
         std::copy(range.begin(), range.end(), out + 3 * begin);
       }
       Index count = 0;
@@ -181,7 +182,8 @@ inline const double* TuplesAsDoubles(vtkDataArray* data, std::unique_ptr<double[
     }
     else
     {
-      const auto range = vtk::DataArrayValueRange<3>(data, begin, end);
+      // (A value range: its bounds count values, three per tuple.)
+      const auto range = vtk::DataArrayValueRange<3>(data, 3 * begin, 3 * end);
       std::copy(range.begin(), range.end(), out + 3 * begin);
     }
   });

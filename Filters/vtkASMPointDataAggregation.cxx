@@ -25,12 +25,14 @@ using asmcore::Index;
 using asmcore::SimplifyResult;
 
 // Mean of each component over the finite member values, written to dst
-// (renormalised for normals). `get(member, component)` reads a value.
+// (renormalised for normals). `get(member, component)` reads a value;
+// `touch(member)` may start loading a member's values ahead of their turn
+// (members are scattered in memory).
 // Returns false when the mean of a normal is zero (caller keeps the
 // representative's normal).
-template <typename Get>
+template <typename Get, typename Touch>
 bool ClusterMean(const SimplifyResult& result, const asmcore::Sample& sample, int components,
-  bool renormalise, Get&& get, double* sum, Index* count)
+  bool renormalise, Get&& get, Touch&& touch, double* sum, Index* count)
 {
   std::fill(sum, sum + components, 0.0);
   std::fill(count, count + components, Index(0));
@@ -42,8 +44,16 @@ bool ClusterMean(const SimplifyResult& result, const asmcore::Sample& sample, in
   {
     return false; // an empty cluster: the representative's values
   }
+  // Members lie sample after sample: the look-ahead runs into the next
+  // samples' members.
+  constexpr Index Ahead = 16;
+  const Index available = static_cast<Index>(result.Members.size()) - sample.MemberBegin;
   for (Index m = 0; m < core; ++m)
   {
+    if (m + Ahead < available)
+    {
+      touch(members[m + Ahead]);
+    }
     const Index id = members[m];
     for (int c = 0; c < components; ++c)
     {
@@ -98,8 +108,8 @@ struct MeanWorker
         const asmcore::Sample& sample = result.Samples[s];
         auto dst = outTuples[s];
         const bool ok = ClusterMean(result, sample, nc, renormalise,
-          [&](Index id, int c) { return static_cast<double>(inTuples[id][c]); }, sum.data(),
-          n.data());
+          [&](Index id, int c) { return static_cast<double>(inTuples[id][c]); }, [](Index) {},
+          sum.data(), n.data());
         if (!ok)
         {
           const auto src = inTuples[sample.Representative];
@@ -157,8 +167,8 @@ struct MeanWorker
           const asmcore::Sample& sample = result.Samples[s];
           T* d = dst + s * nc;
           const bool ok = ClusterMean(result, sample, nc, renormalise,
-            [&](Index id, int c) { return static_cast<double>(src[id * nc + c]); }, sum.data(),
-            n.data());
+            [&](Index id, int c) { return static_cast<double>(src[id * nc + c]); },
+            [&](Index id) { asmcore::Prefetch(src + id * nc); }, sum.data(), n.data());
           if (!ok)
           {
             std::copy(src + sample.Representative * nc, src + (sample.Representative + 1) * nc, d);

@@ -8,6 +8,7 @@
 #include "vtkASMFilterUtilities.h"
 #include "vtkASMPointDataAggregation.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkDataArrayRange.h"
@@ -213,13 +214,26 @@ int vtkASMSimplify::RequestData(
     parameters.CloudCentroid = share.Centroid;
   }
 
+  // The input normals are read where they are (float or double arrays);
+  // other layouts are copied as doubles.
   std::unique_ptr<double[]> normalCopy;
-  const double* normals = nullptr;
+  asmcore::NormalField normals;
   if (vtkDataArray* inNormals = inPD->GetNormals())
   {
     if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
     {
-      normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
+      if (auto* floats = vtkArrayDownCast<vtkAOSDataArrayTemplate<float>>(inNormals))
+      {
+        normals = asmcore::NormalField(floats->GetPointer(0));
+      }
+      else if (auto* doubles = vtkArrayDownCast<vtkAOSDataArrayTemplate<double>>(inNormals))
+      {
+        normals = asmcore::NormalField(doubles->GetPointer(0));
+      }
+      else
+      {
+        normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
+      }
     }
   }
 

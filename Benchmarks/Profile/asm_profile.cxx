@@ -7,10 +7,13 @@
  *
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages]
- *               [--dump file] [--coherent] [--mode paper|feature]
+ *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
  *
  * --mode picks vtkASMSimplify's Mode (default: the filter's default,
  * FEATURE_PRESERVING).
+ * --arrays attaches a scan's usual point data to the input (RGB colour as
+ * unsigned chars, a float intensity, float normals) so that the time of
+ * their aggregation shows (it is the difference to a run without).
  * --coherent sorts the synthetic points along a Morton curve (scan-like
  * memory order; default: random order, the worst case for gathers).
  * --stages also times the core's stages one by one (same calls as
@@ -39,6 +42,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <malloc.h>
 #include <time.h>
@@ -274,13 +278,46 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
 }
 } // namespace
 
+// RGB colour, intensity and normals, as a scanner writes them (values from
+// the coordinates: deterministic).
+void AddScanArrays(vtkPolyData* input)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("RGB");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(n);
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  intensity->SetNumberOfTuples(n);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int a = 0; a < 3; ++a)
+    {
+      rgb->SetTypedComponent(i, a, static_cast<unsigned char>(127.5 * (1.0 + p[a] / (r > 0 ? r : 1))));
+      normals->SetTypedComponent(i, a, static_cast<float>(r > 0 ? p[a] / r : 0.0));
+    }
+    intensity->SetValue(i, static_cast<float>(r));
+  }
+  input->GetPointData()->AddArray(rgb);
+  input->GetPointData()->AddArray(intensity);
+  input->GetPointData()->SetNormals(normals);
+}
+
 int main(int argc, char* argv[])
 {
   std::vector<long> sizes = { 1000000 };
   std::vector<long> threads = { 1 };
   int runs = 3;
   double fraction = 0.05;
-  bool curvature = false, stages = false, coherent = false;
+  bool curvature = false, stages = false, coherent = false, arrays = false;
   const char* ply = nullptr;
   const char* dump = nullptr;
   int mode = -1;
@@ -306,6 +343,8 @@ int main(int argc, char* argv[])
       curvature = true;
     else if (a == "--coherent")
       coherent = true;
+    else if (a == "--arrays")
+      arrays = true;
     else if (a == "--stages")
       stages = true;
     else
@@ -334,6 +373,8 @@ int main(int argc, char* argv[])
       input = Synthetic(n, 42, coherent);
     }
     const vtkIdType np = input->GetNumberOfPoints();
+    if (arrays)
+      AddScanArrays(input);
     if (stages)
       TimeStages(input, fraction, mode);
     for (long t : threads)

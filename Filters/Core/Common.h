@@ -13,6 +13,7 @@
 
 #include "vtkASMFiltersModule.h" // For export macro
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -101,6 +102,35 @@ struct DefaultInitAllocator : std::allocator<T>
 /// A per-point array whose resize() does not zero-fill (DefaultInitAllocator).
 template <typename T>
 using PointArray = std::vector<T, DefaultInitAllocator<T>>;
+
+/// Optional input normals, three floats or three doubles per point, read
+/// where they are (a float array needs no double copy). Converts from a
+/// double pointer or nullptr (no normals).
+struct NormalField
+{
+  const double* Doubles = nullptr;
+  const float* Floats = nullptr;
+
+  NormalField() = default;
+  NormalField(std::nullptr_t) {}
+  NormalField(const double* doubles)
+    : Doubles(doubles)
+  {
+  }
+  NormalField(const float* floats)
+    : Floats(floats)
+  {
+  }
+  explicit operator bool() const { return this->Doubles || this->Floats; }
+  /// Normal of point `id` into out[3] (floats widened exactly).
+  void Get(Index id, double out[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      out[a] = this->Doubles ? this->Doubles[3 * id + a] : static_cast<double>(this->Floats[3 * id + a]);
+    }
+  }
+};
 
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);

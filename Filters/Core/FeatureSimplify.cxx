@@ -144,7 +144,7 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
 }
 
 SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<Index>& ids,
-  const double* normals, const SimplifyParameters& parameters, const Execution& execution)
+  NormalField normals, const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
@@ -420,7 +420,8 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         }
         if (normals)
         {
-          const Eigen::Vector3d v(normals[3 * first[m]], normals[3 * first[m] + 1], normals[3 * first[m] + 2]);
+          Eigen::Vector3d v;
+          normals.Get(first[m], v.data());
           if (v.allFinite())
           {
             normalSum += v;

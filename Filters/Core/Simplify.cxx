@@ -493,7 +493,7 @@ void SummarizeKeyPoints(SimplifyResult& result)
   result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
 }
 
-SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const double* normals,
+SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, NormalField normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
   if (parameters.Mode == SimplifyMode::FeaturePreserving)
@@ -642,8 +642,8 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, const 
           Eigen::Vector3d sum = Eigen::Vector3d::Zero();
           for (const Index* m = first; m != last; ++m)
           {
-            const double* nm = normals + 3 * points[*m];
-            const Eigen::Vector3d v(nm[0], nm[1], nm[2]);
+            Eigen::Vector3d v;
+            normals.Get(points[*m], v.data());
             if (v.allFinite())
             {
               sum += v;

@@ -174,11 +174,11 @@ VTKASMFILTERS_EXPORT CellGrid BuildRunGrid(const double* xyz, const std::vector<
 VTKASMFILTERS_EXPORT void SummarizeKeyPoints(SimplifyResult& result);
 
 /// Simplify the points xyz[3*id], id in `ids` (finite points), to exactly
-/// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be null)
+/// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be empty)
 /// orients the output normals; without it they point away from the cloud's
 /// centroid. Samples are ordered by grid cell, then key samples first.
 VTKASMFILTERS_EXPORT SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids,
-  const double* normals, const SimplifyParameters& parameters, const Execution& execution = {});
+  NormalField normals, const SimplifyParameters& parameters, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

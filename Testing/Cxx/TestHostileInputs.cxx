@@ -6,7 +6,11 @@
 
 #include "Core/Simplify.h"
 #include "vtkASMSimplify.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
+#include "vtkPoints.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkIdTypeArray.h"
 #include "vtkKeyPointError.h"
 #include "vtkPointData.h"
@@ -446,4 +450,49 @@ TEST(HostileInputs, CoordinatesWhoseSquaresOverflow)
     ASSERT_EQ(out->GetNumberOfPoints(), 150) << (paper ? "paper" : "default");
     ExpectAllFinite(out);
   }
+}
+
+// Points held as integers or in a split (structure-of-arrays) layout are
+// converted to doubles block by block: the same output as the same
+// coordinates in an ordinary double array (more points than one block).
+TEST(HostileInputs, IntegerAndSplitPointArraysGiveTheDoubleResult)
+{
+  const Cloud c = asmtest::Sphere(100000, 1000.0, 5); // radius 1000: integers keep the shape
+  const vtkIdType n = static_cast<vtkIdType>(c.size() / 3);
+  vtkNew<vtkDoubleArray> doubles;
+  vtkNew<vtkIntArray> integers;
+  vtkNew<vtkSOADataArrayTemplate<double>> split;
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(doubles), static_cast<vtkDataArray*>(integers),
+         static_cast<vtkDataArray*>(split) })
+  {
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(n);
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double rounded[3] = { std::round(c[3 * i]), std::round(c[3 * i + 1]), std::round(c[3 * i + 2]) };
+    doubles->SetTuple(i, rounded);
+    integers->SetTuple(i, rounded);
+    split->SetTuple(i, rounded);
+  }
+  auto simplified = [&](vtkDataArray* coordinates) {
+    vtkNew<vtkPoints> points;
+    points->SetData(coordinates);
+    vtkNew<vtkPolyData> input;
+    input->SetPoints(points);
+    FilterRun run;
+    run.Filter->SetOutputFraction(0.05);
+    run.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    vtkPolyData* out = run.Execute(input);
+    std::vector<double> xyz(static_cast<std::size_t>(3 * out->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+    {
+      out->GetPoint(i, xyz.data() + 3 * i);
+    }
+    return xyz;
+  };
+  const std::vector<double> reference = simplified(doubles);
+  ASSERT_EQ(reference.size(), 3u * 5000u);
+  EXPECT_EQ(simplified(integers), reference);
+  EXPECT_EQ(simplified(split), reference);
 }
