@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <type_traits>
 
 namespace asmcore
 {
@@ -331,18 +332,35 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
         (std::lower_bound(left.begin(), left.end(), c) - left.begin());
     }
   });
-  std::vector<double> position(samples.Position.size());
-  std::vector<char> fixed(samples.Fixed.size());
-  execution.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
+  // The positions and flags follow, in place (no new arrays to fault in):
+  // the moved samples' values are set aside, the others close up in order
+  // (forward: a value only moves down), then, from the end, each slot takes
+  // the last value not yet placed or the moved sample that `order` puts
+  // there (backward: a value only moves up).
+  auto reorder = [&](auto* values, int width) {
+    using T = std::remove_pointer_t<decltype(values)>;
+    std::vector<T> aside;
+    for (Index s : movedSamples)
     {
-      std::copy(samples.Position.data() + 3 * order[s], samples.Position.data() + 3 * order[s] + 3,
-        position.data() + 3 * s);
-      fixed[s] = samples.Fixed[order[s]];
+      aside.insert(aside.end(), values + width * s, values + width * (s + 1));
     }
-  });
-  samples.Position.swap(position);
-  samples.Fixed.swap(fixed);
+    Index kept = 0;
+    for (Index s = 0; s < count; ++s)
+    {
+      if (!wasMoved[s])
+      {
+        std::copy(values + width * s, values + width * (s + 1), values + width * kept++);
+      }
+    }
+    Index nextAside = moves;
+    for (Index k = count - 1; k >= 0; --k)
+    {
+      const T* from = wasMoved[order[k]] ? aside.data() + width * --nextAside : values + width * --kept;
+      std::copy(from, from + width, values + width * k);
+    }
+  };
+  reorder(samples.Position.data(), 3);
+  reorder(samples.Fixed.data(), 1);
   return moves;
 }
 } // namespace asmcore

@@ -159,6 +159,33 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
     EXPECT_EQ(batched.Position, serial.Position) << firstBatch;
     EXPECT_EQ(batched.Fixed, serial.Fixed) << firstBatch;
   }
+  // The regrouping is a stable grouping by owner cell: a sample that stayed
+  // keeps its cell, position and flag; a moved one sits in the cell of the
+  // input point it moved to.
+  ASSERT_EQ(serialOrder.size(), static_cast<std::size_t>(samples.Size()));
+  Index movedCount = 0;
+  for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
+  {
+    for (Index s = serial.Start[cell]; s < serial.Start[cell + 1]; ++s)
+    {
+      const Index old = serialOrder[s];
+      EXPECT_EQ(serial.Fixed[s], samples.Fixed[old]);
+      const bool stayed = std::equal(serial.Position.begin() + 3 * s, serial.Position.begin() + 3 * s + 3,
+        samples.Position.begin() + 3 * old);
+      const Index oldCell = static_cast<Index>(
+        std::upper_bound(samples.Start.begin(), samples.Start.end(), old) - samples.Start.begin() - 1);
+      const std::uint64_t key = grid.Spec.KeyOf(serial.Position.data() + 3 * s);
+      const Index newCell = static_cast<Index>(
+        std::lower_bound(grid.CellKey.begin(), grid.CellKey.end(), key) - grid.CellKey.begin());
+      EXPECT_EQ(stayed ? oldCell : newCell, cell) << s;
+      movedCount += stayed ? 0 : 1;
+      if (s > serial.Start[cell])
+      {
+        EXPECT_LT(serialOrder[s - 1], old) << "stable within cell " << cell;
+      }
+    }
+  }
+  EXPECT_EQ(movedCount, serialMoves);
   // Fixed samples never move, and the largest hole shrinks.
   for (Index s = 0; s < serial.Size(); ++s)
   {
