@@ -311,7 +311,10 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     std::vector<Index> order;
     const auto maxMoves = static_cast<Index>(
       std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
-    const std::vector<double> before(samples.Position);
+    PointArray<double> before(samples.Position.size()); // (copied in parallel)
+    execution.Run(0, count, [&](Index b, Index e) {
+      std::copy(samples.Position.begin() + 3 * b, samples.Position.begin() + 3 * e, before.begin() + 3 * b);
+    });
     if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
     {
       break;

@@ -134,12 +134,12 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
 void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const PointArray<Index>& assign, SampleSet& samples, const Execution& execution)
 {
-  std::vector<double> next(samples.Position);
   // The points assigned to a cell's samples lie in its ring (the assignment
   // searches rings, which are symmetric). A chunk of cells scans the union
   // of its cells' rings once, in increasing cell order, which is each ring's
   // visiting order: every sample sums its points in the same order as a scan
-  // of its own ring would.
+  // of its own ring would. Only the chunk's own samples are written, and no
+  // sample position is read: the positions are updated in place.
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     const Index firstSample = samples.Start[b], lastSample = samples.Start[e];
     if (lastSample == firstSample)
@@ -208,11 +208,10 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
       {
         for (int a = 0; a < 3; ++a)
         {
-          next[3 * (firstSample + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
+          samples.Position[3 * (firstSample + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
         }
       }
     }
   });
-  samples.Position.swap(next);
 }
 } // namespace asmcore
