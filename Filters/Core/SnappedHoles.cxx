@@ -2,6 +2,7 @@
 #include "SnappedHoles.h"
 
 #include "Lloyd.h"
+#include "Selection.h"
 
 #include <algorithm>
 #include <array>
@@ -76,23 +77,29 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
     }
   });
   double limit = 0.0; // squared largest hole so far
-  std::vector<Index> order;
   for (Index s = 0; s < count; ++s)
   {
-    if (snapped[s])
-    {
-      order.push_back(s);
-    }
-    else
+    if (!snapped[s])
     {
       limit = std::max(limit, reach[s]);
     }
   }
-  // Only those that reach past the fixed samples can move or raise the bound.
-  order.erase(std::remove_if(order.begin(), order.end(), [&](Index s) { return !(reach[s] > limit); }),
-    order.end());
-  std::sort(order.begin(), order.end(),
-    [&](Index a, Index b) { return reach[a] > reach[b] || (reach[a] == reach[b] && a < b); });
+  // Only those that reach past the fixed samples can move or raise the bound:
+  // widest first (ties: lower index), sorted in parallel.
+  std::vector<RankedValue> ranked;
+  for (Index s = 0; s < count; ++s)
+  {
+    if (snapped[s] && reach[s] > limit)
+    {
+      ranked.emplace_back(reach[s], s);
+    }
+  }
+  SortRanked(ranked, execution);
+  std::vector<Index> order(ranked.size());
+  for (std::size_t k = 0; k < ranked.size(); ++k)
+  {
+    order[k] = ranked[k].second;
+  }
   // Widest first, in batches whose centres are computed in parallel; the
   // bound takes them in order, up to the first cluster within it.
   const Index batch = 256;
