@@ -344,19 +344,24 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       aside.insert(aside.end(), values + width * s, values + width * (s + 1));
     }
+    auto move = [width](const T* from, T* to) {
+      if (from != to) // (ranges of one value never overlap otherwise)
+      {
+        std::copy(from, from + width, to);
+      }
+    };
     Index kept = 0;
     for (Index s = 0; s < count; ++s)
     {
       if (!wasMoved[s])
       {
-        std::copy(values + width * s, values + width * (s + 1), values + width * kept++);
+        move(values + width * s, values + width * kept++);
       }
     }
     Index nextAside = moves;
     for (Index k = count - 1; k >= 0; --k)
     {
-      const T* from = wasMoved[order[k]] ? aside.data() + width * --nextAside : values + width * --kept;
-      std::copy(from, from + width, values + width * k);
+      move(wasMoved[order[k]] ? aside.data() + width * --nextAside : values + width * --kept, values + width * k);
     }
   };
   reorder(samples.Position.data(), 3);
