@@ -311,16 +311,12 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
     std::vector<Index> order;
     const auto maxMoves = static_cast<Index>(
       std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
-    PointArray<double> before(samples.Position.size()); // (copied in parallel)
-    execution.Run(0, count, [&](Index b, Index e) {
-      std::copy(samples.Position.begin() + 3 * b, samples.Position.begin() + 3 * e, before.begin() + 3 * b);
-    });
-    if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, execution) == 0)
+    std::vector<char> moved;
+    if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, moved, execution) == 0)
     {
       break;
     }
     std::vector<SampleInfo> regrouped(info.size());
-    std::vector<char> moved(info.size(), 0);
     execution.Run(0, cells, [&](Index b, Index e) {
       for (Index c = b; c < e; ++c)
       {
@@ -328,9 +324,6 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
         {
           regrouped[s] = info[order[s]];
           regrouped[s].Owner = c;
-          moved[s] = c != info[order[s]].Owner ||
-            !std::equal(before.begin() + 3 * order[s], before.begin() + 3 * order[s] + 3,
-              samples.Position.begin() + 3 * s);
         }
       }
     });

@@ -76,13 +76,15 @@ std::vector<double> NegatedSpreads(const PointArray<Index>& assign, const PointA
 
 Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const PointArray<Index>& assign, const PointArray<double>& distance2, Index maxMoves,
-  SampleSet& samples, std::vector<Index>& order, const Execution& execution, Index firstBatch)
+  SampleSet& samples, std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
+  Index firstBatch)
 {
   const Index count = samples.Size();
   const Index cells = grid.NumberOfCells();
   const Index points = static_cast<Index>(assign.size());
   order.resize(static_cast<std::size_t>(count));
   std::iota(order.begin(), order.end(), Index(0));
+  moved.assign(static_cast<std::size_t>(count), 0);
   if (maxMoves <= 0 || count < 2)
   {
     return 0;
@@ -366,6 +368,12 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   };
   reorder(samples.Position.data(), 3);
   reorder(samples.Fixed.data(), 1);
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k)
+    {
+      moved[k] = wasMoved[order[k]];
+    }
+  });
   return moves;
 }
 } // namespace asmcore

@@ -21,15 +21,17 @@ namespace asmcore
 {
 /// Moves at most `maxMoves` free samples of `samples` to gap points, given
 /// the current assignment (AssignToSamples). A moved sample changes owner
-/// cell and the set is regrouped by owner: order[new slot] = old slot.
-/// Returns the number of moves. The removal costs are computed ahead in
+/// cell and the set is regrouped by owner: order[new slot] = old slot, and
+/// moved[new slot] is 1 for a sample moved to a gap, 0 for the others (which
+/// keep their cell and position). Returns the number of moves. The removal costs are computed ahead in
 /// parallel batches of candidates, `firstBatch` first, doubling up to 1024
 /// (1: one at a time, each at its turn, as a serial scan); the result does
 /// not depend on it.
 VTKASMFILTERS_EXPORT Index FillHoles(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<Index>& assign,
   const PointArray<double>& distance2, Index maxMoves, SampleSet& samples,
-  std::vector<Index>& order, const Execution& execution, Index firstBatch = 32);
+  std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
+  Index firstBatch = 32);
 } // namespace asmcore
 
 #endif

@@ -144,20 +144,23 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
 
   asmcore::SampleSet serial = samples;
   std::vector<Index> serialOrder;
+  std::vector<char> serialMoved;
   const Index serialMoves = asmcore::FillHoles(
-    c.data(), grid, neighbors, assign, distance2, maxMoves, serial, serialOrder, {}, 1);
+    c.data(), grid, neighbors, assign, distance2, maxMoves, serial, serialOrder, serialMoved, {}, 1);
   ASSERT_GT(serialMoves, 20) << "the set-up must move many samples";
   for (Index firstBatch : { Index(2), Index(32), Index(5000) })
   {
     asmcore::SampleSet batched = samples;
     std::vector<Index> batchedOrder;
+    std::vector<char> batchedMoved;
     const Index batchedMoves = asmcore::FillHoles(c.data(), grid, neighbors, assign, distance2, maxMoves,
-      batched, batchedOrder, UnevenTwoThreads(), firstBatch);
+      batched, batchedOrder, batchedMoved, UnevenTwoThreads(), firstBatch);
     EXPECT_EQ(batchedMoves, serialMoves) << firstBatch;
     EXPECT_EQ(batchedOrder, serialOrder) << firstBatch;
     EXPECT_EQ(batched.Start, serial.Start) << firstBatch;
     EXPECT_EQ(batched.Position, serial.Position) << firstBatch;
     EXPECT_EQ(batched.Fixed, serial.Fixed) << firstBatch;
+    EXPECT_EQ(batchedMoved, serialMoved) << firstBatch;
   }
   // The regrouping is a stable grouping by owner cell: a sample that stayed
   // keeps its cell, position and flag; a moved one sits in the cell of the
@@ -178,6 +181,7 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
       const Index newCell = static_cast<Index>(
         std::lower_bound(grid.CellKey.begin(), grid.CellKey.end(), key) - grid.CellKey.begin());
       EXPECT_EQ(stayed ? oldCell : newCell, cell) << s;
+      EXPECT_EQ(serialMoved[s], stayed ? 0 : 1) << s;
       movedCount += stayed ? 0 : 1;
       if (s > serial.Start[cell])
       {
