@@ -274,7 +274,7 @@ CellGrid BuildCellGrid(
       {
         std::uint64_t ijk[3];
         cellOf(xyz + 3 * ids[i], ijk);
-        cell[i] = static_cast<CellNumber>(table.Find((ijk[2] << 42) | (ijk[1] << 21) | ijk[0]));
+        cell[i] = static_cast<CellNumber>(table.Find(GridSpec::PackKey(ijk)));
       }
     });
     SortIntoCells(ids, cell.data(), grid, execution);
@@ -307,7 +307,7 @@ Index CountDistinctCells(
     {
       std::uint64_t ijk[3];
       cellOf(xyz + 3 * ids[i], ijk);
-      key[i] = (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
+      key[i] = GridSpec::PackKey(ijk);
     }
   });
   constexpr Index Partitions = 16;

@@ -61,6 +61,11 @@ struct VTKASMFILTERS_EXPORT GridSpec
   {
     std::uint64_t ijk[3];
     this->CellOf(p, ijk);
+    return PackKey(ijk);
+  }
+  /// The packed key of integer cell coordinates (each below MaxDim).
+  static std::uint64_t PackKey(const std::uint64_t ijk[3])
+  {
     return (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
   }
   /// Integer cell coordinates of the cell holding p (clamped to the grid).

@@ -295,7 +295,7 @@ inline void InsertKeys(const double* xyz, const std::vector<Index>& ids, const G
   {
     std::uint64_t ijk[3];
     cellOf(xyz + 3 * id, ijk);
-    const std::uint64_t key = (ijk[2] << 42) | (ijk[1] << 21) | ijk[0];
+    const std::uint64_t key = GridSpec::PackKey(ijk);
     if (key != last)
     {
       table.Insert(key);
