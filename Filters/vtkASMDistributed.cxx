@@ -38,7 +38,7 @@ std::uint64_t Mix(std::uint64_t key)
 
 //------------------------------------------------------------------------------
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  const std::vector<Index>& ids, const asmcore::GridSpec& spec)
+  asmcore::IdView ids, const asmcore::GridSpec& spec)
 {
   std::vector<std::uint64_t> keys(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i)
@@ -80,7 +80,7 @@ int SlabPartition::OwnerOf(std::int64_t axisIndex) const
 }
 
 SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSpec& grid,
-  const double* xyz, const std::vector<Index>& ids)
+  const double* xyz, asmcore::IdView ids)
 {
   SlabPartition slabs;
   slabs.Grid = grid;
@@ -115,15 +115,15 @@ SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSp
 }
 
 //------------------------------------------------------------------------------
-std::vector<Index> WithoutDuplicateGhosts(vtkPointSet* input, const std::vector<Index>& ids)
+asmcore::PointIds WithoutDuplicateGhosts(vtkPointSet* input, asmcore::IdView ids)
 {
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
     input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
   if (!ghosts)
   {
-    return ids;
+    return asmcore::PointIds(ids.begin(), ids.end());
   }
-  std::vector<Index> kept;
+  asmcore::PointIds kept;
   kept.reserve(ids.size());
   for (Index id : ids)
   {
@@ -220,7 +220,7 @@ Index SimplifyShare::BudgetOf(std::uint64_t key) const
 }
 
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
-  const std::vector<Index>& ids, const asmcore::SimplifyParameters& parameters)
+  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters)
 {
   SimplifyShare share;
   const Index total = comm.Sum(static_cast<Index>(ids.size()));

@@ -170,7 +170,7 @@ private:
 
 /// Distinct non-empty cells of `spec` over all processes (collective).
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  const std::vector<Index>& ids, const asmcore::GridSpec& spec);
+  asmcore::IdView ids, const asmcore::GridSpec& spec);
 
 /// Which process owns each grid cell: slabs of the axis index along the
 /// grid's longest axis, balanced by point counts.
@@ -186,7 +186,7 @@ struct SlabPartition
 
 /// Collective: the slabs of `grid` for the points xyz[3*id], id in ids.
 SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSpec& grid,
-  const double* xyz, const std::vector<Index>& ids);
+  const double* xyz, asmcore::IdView ids);
 
 /// The points a process holds after redistribution, in canonical order.
 struct LocalCloud
@@ -205,7 +205,7 @@ struct LocalCloud
 /// point-data arrays of `input`) to the owner of its cell and, as a halo
 /// point, to the owners of the cells within `haloRings` cells.
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  const std::vector<Index>& ids, const SlabPartition& partition, int haloRings);
+  asmcore::IdView ids, const SlabPartition& partition, int haloRings);
 
 /// Collective: the budgets N_c of this process's cells (`keys`, with
 /// `capacity` points and surface variation `variation`), apportioned over
@@ -246,11 +246,11 @@ void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
 /// redistribution with a halo of HaloRingsFor(parameters) cells, and the
 /// global budgets (feature mode: also every cell's, ShareAllBudgets).
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
-  const std::vector<Index>& ids, const asmcore::SimplifyParameters& parameters);
+  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters);
 
 /// `ids` without the points flagged as duplicates of another process's
 /// points (vtkGhostType & DUPLICATEPOINT).
-std::vector<Index> WithoutDuplicateGhosts(vtkPointSet* input, const std::vector<Index>& ids);
+asmcore::PointIds WithoutDuplicateGhosts(vtkPointSet* input, asmcore::IdView ids);
 } // namespace asmvtk
 
 #endif

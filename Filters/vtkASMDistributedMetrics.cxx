@@ -62,7 +62,7 @@ std::vector<double> Flatten(const std::vector<Eigen::Vector3d>& points)
 } // namespace
 
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
-  const std::vector<Index>& ids, const double* sxyz, const std::vector<Index>& sids,
+  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
   const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors)
 {
   DistributedComparison out;

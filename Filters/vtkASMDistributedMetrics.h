@@ -40,7 +40,7 @@ struct DistributedComparison
 /// Collective. `snormals` (sids order x 3, may be null on every process)
 /// orients the curvature; curvatureNeighbors <= 0: no curvature.
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
-  const std::vector<Index>& ids, const double* sxyz, const std::vector<Index>& sids,
+  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
   const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors);
 } // namespace asmvtk
 

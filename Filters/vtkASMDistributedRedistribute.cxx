@@ -129,7 +129,7 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
 } // namespace
 
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  const std::vector<Index>& ids, const SlabPartition& partition, int haloRings)
+  asmcore::IdView ids, const SlabPartition& partition, int haloRings)
 {
   LocalCloud cloud;
   vtkPointData* inPD = input->GetPointData();

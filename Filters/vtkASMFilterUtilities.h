@@ -79,7 +79,7 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 /// run in parallel (vtkSMPTools) over fixed blocks: the result does not
 /// depend on the thread count.
 inline const double* PrepareCoordinates(
-  vtkPoints* points, std::unique_ptr<double[]>& copy, std::vector<asmcore::Index>& ids)
+  vtkPoints* points, std::unique_ptr<double[]>& copy, asmcore::PointIds& ids)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -251,7 +251,7 @@ inline void AddFieldValue(vtkFieldData* fd, const char* name, double value)
 /// cloud (xyz, ids, tree), signs following `normals` (n x 3, may be null).
 /// Returns false if aborted.
 inline bool AddCurvatureArrays(vtkPointData* pd, const double* xyz,
-  const std::vector<asmcore::Index>& ids, const asmcore::Neighbors& tree, const double* queries,
+  asmcore::IdView ids, const asmcore::Neighbors& tree, const double* queries,
   vtkIdType n, const double* normals, int k, const asmcore::Execution& execution)
 {
   const auto estimates = asmcore::EstimateCurvature(xyz, ids, tree, queries, n, normals, k, execution);

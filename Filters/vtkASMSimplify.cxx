@@ -113,7 +113,7 @@ int vtkASMSimplify::RequestData(
 
   // Coordinates, finite points, and the requested output size.
   std::unique_ptr<double[]> coordinateCopy;
-  std::vector<Index> ids;
+  asmcore::PointIds ids;
   const double* xyz = numberOfPoints > 0
     ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids)
     : nullptr;
@@ -195,7 +195,7 @@ int vtkASMSimplify::RequestData(
       vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
     }
     xyz = share.Cloud.Xyz.data();
-    ids = share.Cloud.Ids;
+    ids.assign(share.Cloud.Ids.begin(), share.Cloud.Ids.end());
     coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
@@ -289,7 +289,7 @@ int vtkASMSimplify::RequestData(
   if (!this->GenerateCurvature)
   {
     coordinateCopy.reset();
-    std::vector<Index>().swap(ids);
+    asmcore::PointIds().swap(ids);
     xyz = nullptr;
   }
 

@@ -188,7 +188,7 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   using namespace asmcore;
   double t0 = Cpu();
   std::unique_ptr<double[]> copy;
-  std::vector<Index> ids;
+  asmcore::PointIds ids;
   const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, ids);
   double t1 = Cpu();
   double t2 = Cpu();

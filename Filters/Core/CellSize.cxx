@@ -32,7 +32,7 @@ namespace
 // cell too sparse to get a sample of its own (a far outlier, a stray point)
 // counts for its share only.
 double EffectiveOccupiedCells(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, double minPoints)
+  const double* xyz, IdView ids, const GridSpec& spec, double minPoints)
 {
   // Points per cell in a hash table, then the cells in increasing key order
   // (the order of the sum): no sort of one key per point.
@@ -117,7 +117,7 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   return SearchCellSize(bounds, targetCells, countOccupied, start);
 }
 
-std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index>& ids,
+std::vector<double> CellSizeSubsample(const double* xyz, IdView ids,
   double totalPoints, double targetCells, const Execution& execution)
 {
   std::vector<double> subset;
@@ -175,7 +175,7 @@ std::vector<double> CellSizeSubsample(const double* xyz, const std::vector<Index
 namespace
 {
 // The search on the subsample, as a start for the full search (0: none).
-double SubsampleStart(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
+double SubsampleStart(const double* xyz, IdView ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
   const std::vector<double> subset =
@@ -210,7 +210,7 @@ bool SparseCellsDominate(double effective, double raw)
 }
 
 // The outlier-robust search: each cell counted by min(1, points / minimum).
-double SearchIgnoringSparseCells(const double* xyz, const std::vector<Index>& ids,
+double SearchIgnoringSparseCells(const double* xyz, IdView ids,
   const Bounds& bounds, double targetCells)
 {
   const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
@@ -219,13 +219,13 @@ double SearchIgnoringSparseCells(const double* xyz, const std::vector<Index>& id
 }
 } // namespace
 
-double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids, const Bounds& bounds,
+double AutomaticCellSize(const double* xyz, IdView ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
   return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution).Spec.CellSize;
 }
 
-CellGrid BuildAutomaticCellGrid(const double* xyz, const std::vector<Index>& ids,
+CellGrid BuildAutomaticCellGrid(const double* xyz, IdView ids,
   const Bounds& bounds, double targetCells, const Execution& execution)
 {
   const double maxExtent = bounds.MaxExtent();

@@ -20,14 +20,14 @@ namespace asmcore
 /// (about 32 points per target cell), then from there on all points, usually
 /// in one or two passes. When sparse cells (far outliers) make up a fifth of the
 /// count, searches again counting each cell by its share of a sample.
-VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, const std::vector<Index>& ids,
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, IdView ids,
   const Bounds& bounds, double targetCells, const Execution& execution = {});
 
 /// BuildCellGrid with the cell size of AutomaticCellSize, searched and built
 /// in one go (the grid of the search's last count is reused when it is the
 /// answer).
 VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(const double* xyz,
-  const std::vector<Index>& ids, const Bounds& bounds, double targetCells,
+  IdView ids, const Bounds& bounds, double targetCells,
   const Execution& execution = {});
 
 /// The same search with the occupancy counted by `countOccupied` (e.g. the
@@ -44,7 +44,7 @@ VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targe
 /// whatever the order or the partition of the cloud over processes; empty
 /// when totalPoints < 200000 (the search then runs on all points).
 VTKASMFILTERS_EXPORT std::vector<double> CellSizeSubsample(const double* xyz,
-  const std::vector<Index>& ids, double totalPoints, double targetCells,
+  IdView ids, double totalPoints, double targetCells,
   const Execution& execution = {});
 } // namespace asmcore
 

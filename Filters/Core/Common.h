@@ -13,6 +13,7 @@
 
 #include "vtkASMFiltersModule.h" // For export macro
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -74,23 +75,34 @@ inline void Prefetch(const void* p)
 /// uninitialised instead of zero-filling them serially. For large per-point
 /// arrays that a parallel loop writes in full before anything reads them
 /// (their pages are then first touched by that loop, on every thread).
-template <typename T>
+/// With Unwritten, resize() writes nothing even for a type with default
+/// member initialisers (ResizeInParallel then writes them).
+template <typename T, bool Unwritten = false>
 struct DefaultInitAllocator : std::allocator<T>
 {
   template <typename U>
   struct rebind
   {
-    using other = DefaultInitAllocator<U>;
+    using other = DefaultInitAllocator<U, Unwritten>;
   };
   DefaultInitAllocator() noexcept = default;
   template <typename U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  DefaultInitAllocator(const DefaultInitAllocator<U, Unwritten>&) noexcept
   {
   }
   template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
   {
-    ::new (static_cast<void*>(p)) U;
+    if constexpr (Unwritten)
+    {
+      static_assert(std::is_trivially_copyable<U>::value && std::is_trivially_destructible<U>::value,
+        "only plain aggregates may be left unwritten");
+      (void)p;
+    }
+    else
+    {
+      ::new (static_cast<void*>(p)) U;
+    }
   }
   template <typename U, typename... Args>
   void construct(U* p, Args&&... args)
@@ -102,6 +114,56 @@ struct DefaultInitAllocator : std::allocator<T>
 /// A per-point array whose resize() does not zero-fill (DefaultInitAllocator).
 template <typename T>
 using PointArray = std::vector<T, DefaultInitAllocator<T>>;
+
+/// An array of plain aggregates whose resize() writes nothing, not even
+/// their default member initialisers: grown by ResizeInParallel.
+template <typename T>
+using UnwrittenArray = std::vector<T, DefaultInitAllocator<T, true>>;
+
+/// Resizes `array` to n elements, the new ones set to `value` by a parallel
+/// loop (which first-touches their pages on every thread).
+template <typename T>
+void ResizeInParallel(UnwrittenArray<T>& array, std::size_t n, const T& value, const Execution& execution)
+{
+  const auto old = static_cast<Index>(array.size());
+  array.resize(n);
+  execution.Run(old, static_cast<Index>(n),
+    [&](Index b, Index e) { std::fill(array.begin() + b, array.begin() + e, value); });
+}
+
+/// A list of point ids that a parallel loop fills (no serial zero fill).
+using PointIds = PointArray<Index>;
+
+/// A read-only view of a list of point ids (indices into an xyz array): what
+/// the steps take, so that a caller may hold its ids in a std::vector or in
+/// a PointArray (which a parallel loop fills without a serial zero fill).
+/// It does not own the ids: the list must outlive the call.
+class IdView
+{
+public:
+  IdView() = default;
+  template <typename Allocator>
+  IdView(const std::vector<Index, Allocator>& ids) // NOLINT: implicit on purpose
+    : First(ids.data())
+    , Count(ids.size())
+  {
+  }
+  IdView(const Index* first, std::size_t count)
+    : First(first)
+    , Count(count)
+  {
+  }
+  const Index* data() const { return this->First; }
+  std::size_t size() const { return this->Count; }
+  bool empty() const { return this->Count == 0; }
+  const Index* begin() const { return this->First; }
+  const Index* end() const { return this->First + this->Count; }
+  const Index& operator[](std::size_t i) const { return this->First[i]; }
+
+private:
+  const Index* First = nullptr;
+  std::size_t Count = 0;
+};
 
 /// Optional input normals, three floats or three doubles per point, read
 /// where they are (a float array needs no double copy). Converts from a

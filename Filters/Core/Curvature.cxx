@@ -122,7 +122,7 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   return estimate;
 }
 
-std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, const std::vector<Index>& ids,
+std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, IdView ids,
   const Neighbors& tree, const double* queries, Index nQueries, const double* orientNormals, int k,
   const Execution& exec)
 {

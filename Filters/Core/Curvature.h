@@ -80,7 +80,7 @@ VTKASMFILTERS_EXPORT CurvatureEstimate EstimateCurvatureAt(const double* xyz,
 /// A non-finite query, or an empty tree, gives a NaN estimate.
 /// Cost: O(nQueries (log N + k log k + k)) after the tree.
 VTKASMFILTERS_EXPORT std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz,
-  const std::vector<Index>& ids, const Neighbors& tree, const double* queries, Index nQueries,
+  IdView ids, const Neighbors& tree, const double* queries, Index nQueries,
   const double* orientNormals, int k, const Execution& exec);
 } // namespace asmcore
 

@@ -119,7 +119,7 @@ void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info
   {
     output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
   }
-  std::vector<Sample> samples;
+  UnwrittenArray<Sample> samples;
   PointArray<Index> members;
   for (std::size_t s = 0; s < result.Samples.size(); ++s)
   {
@@ -143,7 +143,7 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
   return 1 + 2 * CrossIterations(parameters) + 2;
 }
 
-SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<Index>& ids,
+SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
   NormalField normals, const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
@@ -380,7 +380,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, const std::vector<In
   {
     ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
   }
-  result.Samples.resize(static_cast<std::size_t>(count));
+  ResizeInParallel(result.Samples, static_cast<std::size_t>(count), Sample{}, execution);
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {

@@ -64,7 +64,7 @@ VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 /// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever
 /// the thread count, Members partitioning the input points among the samples.
 VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(const double* xyz,
-  const std::vector<Index>& ids, NormalField normals, const SimplifyParameters& parameters,
+  IdView ids, NormalField normals, const SimplifyParameters& parameters,
   const Execution& execution = {});
 } // namespace asmcore
 

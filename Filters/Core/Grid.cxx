@@ -45,7 +45,7 @@ double Bounds::MaxExtent() const
 using namespace occupancy;
 
 
-Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+Bounds ComputeBounds(const double* xyz, IdView ids, const Execution& execution)
 {
   Bounds b;
   if (ids.empty())
@@ -91,7 +91,7 @@ Bounds ComputeBounds(const double* xyz, const std::vector<Index>& ids, const Exe
 }
 
 void ComputeCentroid(
-  const double* xyz, const std::vector<Index>& ids, double centroid[3], const Execution& execution)
+  const double* xyz, IdView ids, double centroid[3], const Execution& execution)
 {
   centroid[0] = centroid[1] = centroid[2] = 0.0;
   const Index n = static_cast<Index>(ids.size());
@@ -165,7 +165,7 @@ namespace occupancy
 // stable: in each cell, points keep the order of `ids`, then ties by id.
 // Fills grid.CellStart and grid.Order; grid.CellKey is set.
 template <typename CellNumber>
-void SortIntoCells(const std::vector<Index>& ids, const CellNumber* cell, CellGrid& grid,
+void SortIntoCells(IdView ids, const CellNumber* cell, CellGrid& grid,
   const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
@@ -199,7 +199,7 @@ void SortIntoCells(const std::vector<Index>& ids, const CellNumber* cell, CellGr
 }
 
 // The grid from valid marks (which it consumes).
-CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const Execution& execution)
+CellGrid FinishCellGrid(IdView ids, CellMarks& marks, const Execution& execution)
 {
   CellGrid grid;
   grid.Spec = marks.Spec;
@@ -239,7 +239,7 @@ CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const E
 } // namespace occupancy
 
 CellGrid BuildCellGrid(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   if (n == 0)
@@ -297,7 +297,7 @@ namespace
 // number of partitions (by a hash of the key, not the table's) counts its
 // keys in a table of its own, a sixteenth of the size.
 Index CountDistinctCells(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   std::unique_ptr<std::uint64_t[]> key(new std::uint64_t[static_cast<std::size_t>(n)]);
@@ -345,7 +345,7 @@ Index CountDistinctCells(
 } // namespace
 
 Index CountOccupiedCells(
-  const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, const Execution& execution)
+  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   if (ids.empty())
   {

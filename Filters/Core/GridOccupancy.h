@@ -287,7 +287,7 @@ private:
 
 // Distinct keys of the points, in a table (sequential: the fallback for
 // grids too large for a bitmap).
-inline void InsertKeys(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec, KeyTable& table)
+inline void InsertKeys(const double* xyz, IdView ids, const GridSpec& spec, KeyTable& table)
 {
   const FastCellOf cellOf(spec);
   std::uint64_t last = KeyTable::Empty;
@@ -307,7 +307,7 @@ inline void InsertKeys(const double* xyz, const std::vector<Index>& ids, const G
 // Marks the cells of the points in the bitmap; also stores each point's
 // linear cell number in `linear` when not null (the bitmap then has fewer
 // than 2^32 bits).
-inline void MarkCells(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec,
+inline void MarkCells(const double* xyz, IdView ids, const GridSpec& spec,
   OccupancyBitmap& bitmap, std::uint32_t* linear, const Execution& execution)
 {
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
@@ -347,7 +347,7 @@ struct CellMarks
   bool Valid = false;
 
   // False (and nothing marked) when the grid is too large for a bitmap.
-  bool Mark(const double* xyz, const std::vector<Index>& ids, const GridSpec& spec,
+  bool Mark(const double* xyz, IdView ids, const GridSpec& spec,
     const Execution& execution)
   {
     this->Valid = false;
@@ -369,7 +369,7 @@ struct CellMarks
 
 // The grid from valid marks (which it consumes): the second half of
 // BuildCellGrid (Grid.cxx).
-CellGrid FinishCellGrid(const std::vector<Index>& ids, CellMarks& marks, const Execution& execution);
+CellGrid FinishCellGrid(IdView ids, CellMarks& marks, const Execution& execution);
 } // namespace occupancy
 } // namespace asmcore
 

@@ -32,7 +32,7 @@ DistanceSummary Summarize(const std::vector<double>& d)
   return s;
 }
 
-std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, const std::vector<Index>& ids,
+std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
   const GridSpec& spec, const KeyPointRule& rule, const Execution& execution)
 {
   const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
@@ -67,7 +67,7 @@ namespace
 // in this order walk a k-d tree of a nearby cloud through a small working
 // set, whatever the order of the points. Stable: deterministic.
 std::vector<Index> SpatialOrder(
-  const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+  const double* xyz, IdView ids, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   const Bounds bounds = ComputeBounds(xyz, ids, execution);
@@ -107,7 +107,7 @@ std::vector<Index> SpatialOrder(
 }
 } // namespace
 
-void SurfaceDistances(const double* xyz, const std::vector<Index>& ids, const double* surfaceXyz,
+void SurfaceDistances(const double* xyz, IdView ids, const double* surfaceXyz,
   const Neighbors& surface, int k, std::vector<double>* plane, std::vector<double>* nearest,
   const Execution& execution)
 {
@@ -159,14 +159,14 @@ void SurfaceDistances(const double* xyz, const std::vector<Index>& ids, const do
 }
 
 std::vector<double> NearestDistances(
-  const double* xyz, const std::vector<Index>& ids, const Neighbors& target, const Execution& execution)
+  const double* xyz, IdView ids, const Neighbors& target, const Execution& execution)
 {
   std::vector<double> d;
   SurfaceDistances(xyz, ids, nullptr, target, 1, nullptr, &d, execution);
   return d;
 }
 
-std::vector<double> PointToPlaneDistances(const double* xyz, const std::vector<Index>& ids,
+std::vector<double> PointToPlaneDistances(const double* xyz, IdView ids,
   const double* surfaceXyz, const Neighbors& surface, int k, const Execution& execution)
 {
   std::vector<double> d;
@@ -205,7 +205,7 @@ Bounds Union(const Bounds& a, const Bounds& b)
 }
 } // namespace
 
-Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
+Comparison CompareClouds(const double* xyz, IdView ids,
   const Neighbors& originalTree, const double* sxyz, const std::vector<Index>& sids,
   const ComparisonOptions& options, const Execution& execution)
 {

@@ -41,20 +41,20 @@ VTKASMFILTERS_EXPORT DistanceSummary Summarize(const std::vector<double>& d);
 /// The key points of a whole cloud (§3.2): the centroid of every key cluster
 /// of every cell of `spec`, found with `rule`, ordered by cell.
 VTKASMFILTERS_EXPORT std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz,
-  const std::vector<Index>& ids, const GridSpec& spec, const KeyPointRule& rule,
+  IdView ids, const GridSpec& spec, const KeyPointRule& rule,
   const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids: the distance to its nearest point in
 /// `target` (+infinity when `target` is empty).
 VTKASMFILTERS_EXPORT std::vector<double> NearestDistances(const double* xyz,
-  const std::vector<Index>& ids, const Neighbors& target, const Execution& execution = {});
+  IdView ids, const Neighbors& target, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids: the distance to the plane fitted
 /// (PCA) to its k nearest points of the cloud `surfaceXyz` indexed by
 /// `surface`; the distance to the nearest point when fewer than 3 points
 /// are found.
 VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz,
-  const std::vector<Index>& ids, const double* surfaceXyz, const Neighbors& surface, int k,
+  IdView ids, const double* surfaceXyz, const Neighbors& surface, int k,
   const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids, from its k nearest points of the
@@ -63,7 +63,7 @@ VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz
 /// gives (either may be null; resized to ids.size()). The queries are made
 /// in a spatially coherent order (a coarse Morton grid), whatever the order
 /// of the points; each answer is the same as alone.
-VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, const std::vector<Index>& ids,
+VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids,
   const double* surfaceXyz, const Neighbors& surface, int k, std::vector<double>* plane,
   std::vector<double>* nearest, const Execution& execution = {});
 
@@ -99,7 +99,7 @@ struct VTKASMFILTERS_EXPORT Comparison
 /// `simplified` (sxyz, sids), both finite and non-empty. Key points of both
 /// clouds are found on one grid (covering both), each original key point is
 /// paired with the nearest simplified key point.
-VTKASMFILTERS_EXPORT Comparison CompareClouds(const double* xyz, const std::vector<Index>& ids,
+VTKASMFILTERS_EXPORT Comparison CompareClouds(const double* xyz, IdView ids,
   const Neighbors& originalTree, const double* sxyz, const std::vector<Index>& sids,
   const ComparisonOptions& options, const Execution& execution = {});
 } // namespace asmcore

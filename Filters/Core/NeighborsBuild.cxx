@@ -15,7 +15,7 @@
 
 namespace asmcore
 {
-Neighbors::Neighbors(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+Neighbors::Neighbors(const double* xyz, IdView ids, const Execution& execution)
 {
   this->Build(xyz, ids, execution);
 }
@@ -244,7 +244,7 @@ struct Neighbors::Scratch
   std::vector<Entry> Spare;         // the range, bucket by bucket, before it is copied back
 };
 
-void Neighbors::Build(const double* xyz, const std::vector<Index>& ids, const Execution& execution)
+void Neighbors::Build(const double* xyz, IdView ids, const Execution& execution)
 {
   this->Points.clear();
   this->Nodes.clear();

@@ -458,7 +458,7 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   return CellShares(capacity, variation, parameters, exponent);
 }
 
-CellGrid BuildRunGrid(const double* xyz, const std::vector<Index>& ids,
+CellGrid BuildRunGrid(const double* xyz, IdView ids,
   const SimplifyParameters& parameters, Index target, const Execution& execution)
 {
   if (parameters.Grid)
@@ -493,7 +493,7 @@ void SummarizeKeyPoints(SimplifyResult& result)
   result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
 }
 
-SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, NormalField normals,
+SimplifyResult Simplify(const double* xyz, IdView ids, NormalField normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
   if (parameters.Mode == SimplifyMode::FeaturePreserving)
@@ -576,7 +576,7 @@ SimplifyResult Simplify(const double* xyz, const std::vector<Index>& ids, Normal
   {
     sampleStart[c + 1] = sampleStart[c] + budget[c];
   }
-  result.Samples.resize(static_cast<std::size_t>(sampleStart[cells]));
+  ResizeInParallel(result.Samples, static_cast<std::size_t>(sampleStart[cells]), Sample{}, execution);
   // The members start as the grid's order (the points cell by cell): each
   // cell rewrites its own range, from a copy of it, grouped by sample.
   result.Members = std::move(grid.Order);

@@ -28,7 +28,7 @@ struct GlobalCells
   std::vector<double> Variation;
   double Centroid[3] = { 0, 0, 0 };
 
-  GlobalCells(const Cloud& cloud, const std::vector<asmcore::Index>& ids, double cellSize)
+  GlobalCells(const Cloud& cloud, asmcore::IdView ids, double cellSize)
   {
     const asmcore::Bounds bounds = asmcore::ComputeBounds(cloud.data(), ids);
     this->Spec = asmcore::GridSpec::Make(bounds, cellSize);

@@ -33,7 +33,7 @@ using asmtest::UnevenTwoThreads;
 namespace
 {
 // The grid by its definition: (key, id) pairs sorted.
-asmcore::CellGrid ReferenceGrid(const double* xyz, const std::vector<Index>& ids, const asmcore::GridSpec& spec)
+asmcore::CellGrid ReferenceGrid(const double* xyz, asmcore::IdView ids, const asmcore::GridSpec& spec)
 {
   std::vector<std::pair<std::uint64_t, Index>> keyed;
   for (Index id : ids)
@@ -133,6 +133,47 @@ TEST(FastPaths, GridOrdersUnsortedIdsById)
   const auto spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), 0.3);
   ExpectSameGrid(asmcore::BuildCellGrid(c.data(), ids, spec, UnevenTwoThreads()),
     ReferenceGrid(c.data(), ids, spec));
+}
+
+TEST(FastPaths, IdViewsOfEitherListGiveTheSameGrid)
+{
+  // The steps take an IdView: a std::vector of ids, a PointIds filled
+  // without a zero fill, and a view of part of a list see the same ids.
+  const Cloud c = asmtest::Sphere(5000, 2.0, 5);
+  const std::vector<Index> ids = AllIds(c);
+  asmcore::PointIds pointIds(ids.size());
+  std::copy(ids.begin(), ids.end(), pointIds.begin());
+  const auto spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), 0.3);
+  const asmcore::CellGrid reference = ReferenceGrid(c.data(), ids, spec);
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), pointIds, spec, UnevenTwoThreads()), reference);
+  const asmcore::IdView part(ids.data() + 1000, 2000);
+  ASSERT_EQ(part.size(), 2000u);
+  EXPECT_EQ(part[0], ids[1000]);
+  EXPECT_EQ(*(part.end() - 1), ids[2999]);
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), part, spec, UnevenTwoThreads()),
+    ReferenceGrid(c.data(), std::vector<Index>(part.begin(), part.end()), spec));
+}
+
+TEST(FastPaths, ResizeInParallelWritesEveryNewElement)
+{
+  // The samples' array writes nothing on resize(): every new element must
+  // come from the parallel fill, and the old ones must stay.
+  asmcore::UnwrittenArray<asmcore::Sample> samples;
+  asmcore::Sample first;
+  first.Representative = 7;
+  first.Position[1] = 2.5;
+  asmcore::ResizeInParallel(samples, 1000, first, UnevenTwoThreads());
+  asmcore::Sample second; // the default member initialisers
+  asmcore::ResizeInParallel(samples, 5000, second, UnevenTwoThreads());
+  ASSERT_EQ(samples.size(), 5000u);
+  for (std::size_t s = 0; s < samples.size(); ++s)
+  {
+    const asmcore::Sample& expected = s < 1000 ? first : second;
+    ASSERT_EQ(samples[s].Representative, expected.Representative) << s;
+    ASSERT_EQ(samples[s].Position[1], expected.Position[1]) << s;
+    ASSERT_EQ(samples[s].Normal[2], 1.0) << s;
+    ASSERT_FALSE(samples[s].Key) << s;
+  }
 }
 
 TEST(FastPaths, BoundsAndCellSizeIndependentOfCuts)

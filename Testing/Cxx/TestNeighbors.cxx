@@ -26,7 +26,7 @@ using Ranked = std::vector<std::pair<double, Index>>;
 
 // The `keep` first points of (c, ids) by (squared distance to p, id). The
 // distance is evaluated exactly as the tree does, so ties compare equal.
-Ranked BruteForce(const Cloud& c, const std::vector<Index>& ids, const double p[3],
+Ranked BruteForce(const Cloud& c, asmcore::IdView ids, const double p[3],
   std::size_t keep = std::numeric_limits<std::size_t>::max())
 {
   Ranked all;
@@ -43,7 +43,7 @@ Ranked BruteForce(const Cloud& c, const std::vector<Index>& ids, const double p[
   return all;
 }
 
-void ExpectSame(const Ranked& expected, const std::vector<Index>& ids,
+void ExpectSame(const Ranked& expected, asmcore::IdView ids,
   const std::vector<double>& sqDist, const std::string& what)
 {
   ASSERT_EQ(expected.size(), ids.size()) << what;

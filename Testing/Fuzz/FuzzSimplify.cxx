@@ -215,7 +215,7 @@ bool SameBits(double a, double b)
   return std::memcmp(&a, &b, sizeof(double)) == 0;
 }
 
-void CheckSimplify(const Case& k, const std::vector<Index>& ids, const asmcore::SimplifyResult& r)
+void CheckSimplify(const Case& k, asmcore::IdView ids, const asmcore::SimplifyResult& r)
 {
   const Index total = static_cast<Index>(ids.size());
   const Index expected = std::max<Index>(0, std::min(k.Parameters.NumberOfSamples, total));
@@ -320,7 +320,7 @@ void CheckSameResult(const asmcore::SimplifyResult& a, const asmcore::SimplifyRe
   FUZZ_CHECK(SameBits(a.MKPE, b.MKPE) && SameBits(a.AKPE, b.AKPE));
 }
 
-void CheckCompare(const Case& k, const std::vector<Index>& ids, const asmcore::SimplifyResult& r)
+void CheckCompare(const Case& k, asmcore::IdView ids, const asmcore::SimplifyResult& r)
 {
   if (ids.empty() || r.Samples.empty() || ids.size() > 1024)
   {
