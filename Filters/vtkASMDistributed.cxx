@@ -248,7 +248,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
       asmcore::SamplesPerCellOf(parameters);
     // As the serial search: first on the subsample picked by coordinates
     // (the same points however the cloud is split), then on all points.
-    const std::vector<double> subset = asmcore::CellSizeSubsample(
+    const asmcore::PointArray<double> subset = asmcore::CellSizeSubsample(
       xyz, ids, static_cast<double>(total), targetCells);
     double start = 0.0;
     if (comm.Sum(static_cast<Index>(subset.size())) > 0)

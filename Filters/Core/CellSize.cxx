@@ -117,10 +117,10 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   return SearchCellSize(bounds, targetCells, countOccupied, start);
 }
 
-std::vector<double> CellSizeSubsample(const double* xyz, IdView ids,
+PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
   double totalPoints, double targetCells, const Execution& execution)
 {
-  std::vector<double> subset;
+  PointArray<double> subset;
   if (totalPoints < 200000.0 || !(targetCells > 1.0))
   {
     return subset;
@@ -178,13 +178,13 @@ namespace
 double SubsampleStart(const double* xyz, IdView ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
-  const std::vector<double> subset =
+  const PointArray<double> subset =
     CellSizeSubsample(xyz, ids, static_cast<double>(ids.size()), targetCells, execution);
   if (subset.empty())
   {
     return 0.0;
   }
-  std::vector<Index> subsetIds(subset.size() / 3);
+  PointIds subsetIds(subset.size() / 3);
   execution.Run(0, static_cast<Index>(subsetIds.size()), [&](Index b, Index e) {
     std::iota(subsetIds.begin() + b, subsetIds.begin() + e, b);
   });

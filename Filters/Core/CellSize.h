@@ -43,7 +43,7 @@ VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targe
 /// hash of the point's coordinates, so that the same points are picked
 /// whatever the order or the partition of the cloud over processes; empty
 /// when totalPoints < 200000 (the search then runs on all points).
-VTKASMFILTERS_EXPORT std::vector<double> CellSizeSubsample(const double* xyz,
+VTKASMFILTERS_EXPORT PointArray<double> CellSizeSubsample(const double* xyz,
   IdView ids, double totalPoints, double targetCells,
   const Execution& execution = {});
 } // namespace asmcore

@@ -277,7 +277,7 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
   const Cloud c = asmtest::Sphere(300000, 1.0, 5);
   std::vector<Index> ids = AllIds(c);
   const double target = 300000 * 0.05 / 8.0;
-  auto sortedTriples = [](const std::vector<double>& xyz) {
+  auto sortedTriples = [](const asmcore::PointArray<double>& xyz) {
     std::vector<std::array<double, 3>> t(xyz.size() / 3);
     for (std::size_t i = 0; i < t.size(); ++i)
     {
@@ -286,14 +286,14 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
     std::sort(t.begin(), t.end());
     return t;
   };
-  const std::vector<double> whole = asmcore::CellSizeSubsample(c.data(), ids, 300000.0, target);
+  const asmcore::PointArray<double> whole = asmcore::CellSizeSubsample(c.data(), ids, 300000.0, target);
   ASSERT_GT(whole.size(), 3u * 300000 / 40); // about one point in 7 (>= 1 in 4 * 2)
   ASSERT_LT(whole.size(), 3u * 300000 / 4);
   std::shuffle(ids.begin(), ids.end(), std::mt19937_64(3));
   const std::vector<Index> partA(ids.begin(), ids.begin() + 120000);
   const std::vector<Index> partB(ids.begin() + 120000, ids.end());
-  std::vector<double> parts = asmcore::CellSizeSubsample(c.data(), partA, 300000.0, target);
-  const std::vector<double> b = asmcore::CellSizeSubsample(c.data(), partB, 300000.0, target, UnevenTwoThreads());
+  asmcore::PointArray<double> parts = asmcore::CellSizeSubsample(c.data(), partA, 300000.0, target);
+  const asmcore::PointArray<double> b = asmcore::CellSizeSubsample(c.data(), partB, 300000.0, target, UnevenTwoThreads());
   parts.insert(parts.end(), b.begin(), b.end());
   EXPECT_EQ(sortedTriples(parts), sortedTriples(whole));
   // Small clouds are searched on all points.
