@@ -34,6 +34,22 @@
 
 namespace asmvtk
 {
+/// vtkSMPTools::For(begin, end, body), or body(begin, end) on the calling
+/// thread when `threads` is false (small clouds: see
+/// vtkASMSimplify::MinimumPointsForThreads).
+template <typename Body>
+void For(bool threads, vtkIdType begin, vtkIdType end, Body&& body)
+{
+  if (threads)
+  {
+    vtkSMPTools::For(begin, end, body);
+  }
+  else if (begin < end)
+  {
+    body(begin, end);
+  }
+}
+
 /// The coordinates of `points` as N x 3 doubles: the array itself when it
 /// already is one, else a copy in `copy`.
 inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
@@ -78,8 +94,8 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 /// other types are converted into `copy` (not zero-filled first). Both passes
 /// run in parallel (vtkSMPTools) over fixed blocks: the result does not
 /// depend on the thread count.
-inline const double* PrepareCoordinates(
-  vtkPoints* points, std::unique_ptr<double[]>& copy, asmcore::PointIds& ids)
+inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
+  asmcore::PointIds& ids, bool threads = true)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -99,7 +115,7 @@ inline const double* PrepareCoordinates(
   const Index blockSize = Index(1) << 15;
   const Index blocks = (n + blockSize - 1) / blockSize;
   std::vector<Index> finite(static_cast<std::size_t>(blocks) + 1, 0);
-  vtkSMPTools::For(0, blocks, [&](vtkIdType first, vtkIdType last) {
+  For(threads, 0, blocks, [&](vtkIdType first, vtkIdType last) {
     for (Index k = first; k < last; ++k)
     {
       const Index begin = k * blockSize;
@@ -133,7 +149,7 @@ inline const double* PrepareCoordinates(
     finite[k + 1] += finite[k];
   }
   ids.resize(static_cast<std::size_t>(finite[blocks]));
-  vtkSMPTools::For(0, blocks, [&](vtkIdType first, vtkIdType last) {
+  For(threads, 0, blocks, [&](vtkIdType first, vtkIdType last) {
     for (Index k = first; k < last; ++k)
     {
       const Index begin = k * blockSize;
@@ -190,15 +206,20 @@ inline const double* TuplesAsDoubles(vtkDataArray* data, std::unique_ptr<double[
   return out;
 }
 
-/// Runs the core's loops with vtkSMPTools; progress goes to `algorithm`,
-/// scaled into [from, to], and its AbortExecute flag aborts.
-inline asmcore::Execution SMPExecution(vtkAlgorithm* algorithm, double from, double to)
+/// Runs the core's loops with vtkSMPTools (on the calling thread alone when
+/// `threads` is false); progress goes to `algorithm`, scaled into [from, to],
+/// and its AbortExecute flag aborts.
+inline asmcore::Execution SMPExecution(
+  vtkAlgorithm* algorithm, double from, double to, bool threads = true)
 {
   asmcore::Execution execution;
-  execution.For = [](asmcore::Index begin, asmcore::Index end,
-                    const std::function<void(asmcore::Index, asmcore::Index)>& body) {
-    vtkSMPTools::For(begin, end, [&body](vtkIdType b, vtkIdType e) { body(b, e); });
-  };
+  if (threads)
+  {
+    execution.For = [](asmcore::Index begin, asmcore::Index end,
+                      const std::function<void(asmcore::Index, asmcore::Index)>& body) {
+      vtkSMPTools::For(begin, end, [&body](vtkIdType b, vtkIdType e) { body(b, e); });
+    };
+  }
   execution.Progress = [algorithm, from, to](double fraction) {
     algorithm->UpdateProgress(from + (to - from) * fraction);
     return algorithm->GetAbortExecute() != 0;
@@ -218,13 +239,13 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tup
 }
 
 /// One vertex cell per point, for n points: what ParaView renders.
-inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
+inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n, bool threads = true)
 {
   auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
   auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, n);
   vtkIdType* offset = offsets->GetPointer(0);
   vtkIdType* point = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, n, [offset, point](vtkIdType first, vtkIdType last) {
+  For(threads, 0, n, [offset, point](vtkIdType first, vtkIdType last) {
     for (vtkIdType i = first; i < last; ++i)
     {
       offset[i] = i;

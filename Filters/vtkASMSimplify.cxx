@@ -111,11 +111,15 @@ int vtkASMSimplify::RequestData(
     return 1;
   }
 
+  // Small clouds on the calling thread (MinimumPointsForThreads).
+  const bool threads =
+    this->MinimumPointsForThreads <= 0 || numberOfPoints >= this->MinimumPointsForThreads;
+
   // Coordinates, finite points, and the requested output size.
   std::unique_ptr<double[]> coordinateCopy;
   asmcore::PointIds ids;
   const double* xyz = numberOfPoints > 0
-    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids)
+    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids, threads)
     : nullptr;
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   vtkIdType skipped = numberOfPoints - valid;
@@ -258,8 +262,8 @@ int vtkASMSimplify::RequestData(
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
 
-  asmcore::SimplifyResult result = asmcore::Simplify(
-    xyz, ids, normals, parameters, asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9));
+  asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
+    asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
   if (distributed)
   {
     // Figures of the whole cloud: sums and maxima over the processes.
@@ -316,7 +320,7 @@ int vtkASMSimplify::RequestData(
     double* sv = variation->GetPointer(0);
     vtkIdType* original = originalIds->GetPointer(0);
     float* normal = pcaNormals->GetPointer(0);
-    vtkSMPTools::For(0, count, [&](vtkIdType first, vtkIdType last) {
+    asmvtk::For(threads, 0, count, [&](vtkIdType first, vtkIdType last) {
       for (vtkIdType s = first; s < last; ++s)
       {
         const asmcore::Sample& sample = result.Samples[s];
@@ -340,7 +344,7 @@ int vtkASMSimplify::RequestData(
     });
   }
   output->SetPoints(points);
-  output->SetVerts(asmvtk::VertexCells(count));
+  output->SetVerts(asmvtk::VertexCells(count, threads));
   this->UpdateProgress(this->GenerateCurvature ? 0.72 : 0.95);
 
   // Point data: the input's arrays aggregated, then the generated ones.
@@ -380,9 +384,9 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75));
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
-          orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95)))
+          orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95, threads)))
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");
       output->Initialize();
@@ -443,6 +447,7 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
+  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "AlwaysDistribute: " << this->AlwaysDistribute << "\n";
 }

@@ -3,6 +3,7 @@
 // re-executing with changed parameters gives what a fresh filter gives.
 #include "FilterHelpers.h"
 
+#include "vtkASMFilterUtilities.h"
 #include "vtkASMSimplify.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -10,15 +11,21 @@
 #include "vtkIntArray.h"
 #include "vtkKeyPointError.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 using asmtest::Cloud;
 using asmtest::ToPolyData;
@@ -276,4 +283,52 @@ TEST(FilterContracts, KeyPointErrorReExecutionEqualsAFreshRun)
   ASSERT_NE(x, nullptr);
   ASSERT_NE(y, nullptr);
   ExpectSameFields(x->GetRowData(), y->GetRowData(), "table");
+}
+
+// Small clouds run on the calling thread (MinimumPointsForThreads): the
+// helpers the filter runs its loops through either hand the whole range to
+// the calling thread or go through vtkSMPTools.
+TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
+{
+  vtkNew<vtkASMSimplify> filter;
+  EXPECT_EQ(filter->GetMinimumPointsForThreads(), 50000);
+  filter->SetMinimumPointsForThreads(-5);
+  EXPECT_EQ(filter->GetMinimumPointsForThreads(), 0);
+
+  ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
+  vtkSMPTools::Initialize(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  for (bool threads : { false, true })
+  {
+    std::mutex lock;
+    std::vector<std::pair<vtkIdType, vtkIdType>> ranges;
+    bool otherThread = false;
+    auto record = [&](vtkIdType b, vtkIdType e) {
+      std::lock_guard<std::mutex> guard(lock);
+      ranges.emplace_back(b, e);
+      otherThread = otherThread || std::this_thread::get_id() != caller;
+    };
+    asmvtk::For(threads, 0, 100000, record);
+    std::sort(ranges.begin(), ranges.end());
+    ASSERT_FALSE(ranges.empty());
+    EXPECT_EQ(ranges.front().first, 0);
+    EXPECT_EQ(ranges.back().second, 100000);
+    for (std::size_t k = 1; k < ranges.size(); ++k)
+    {
+      EXPECT_EQ(ranges[k].first, ranges[k - 1].second); // a partition of the range
+    }
+    if (!threads)
+    {
+      EXPECT_EQ(ranges.size(), 1u);
+      EXPECT_FALSE(otherThread);
+    }
+    else
+    {
+      EXPECT_GT(ranges.size(), 1u); // vtkSMPTools cut it
+    }
+    const asmcore::Execution execution = asmvtk::SMPExecution(filter, 0.0, 1.0, threads);
+    EXPECT_EQ(static_cast<bool>(execution.For), threads);
+  }
+  vtkSMPTools::Initialize(0);
+  vtkSMPTools::SetBackend("Sequential");
 }
