@@ -352,17 +352,17 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
     }
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
-  // The cell-ordered copy, its identity order and the distances are done
-  // with: released before the members and the samples are laid out (the
-  // peak memory of a run).
+  // The identity order and the distances are done with: released before
+  // the members are laid out (the peak memory of a run).
   PointArray<double>().swap(distance2);
-  cellOrdered.reset();
   PointArray<Index>().swap(grid.Order);
-  P = nullptr;
-  // The members of each sample, in slot order.
+  // The members of each sample as slots of the cell-ordered copy (in slot
+  // order) while the samples are laid out: their coordinates are read from
+  // it, where a cluster's points are near each other in memory, instead of
+  // scattered over the input. They become input point ids at the end.
   std::vector<Index> memberStart;
   GroupBy(
-    total, count, [&](Index i) { return assign[i]; }, [&](Index i) { return original.Order[i]; },
+    total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; },
     memberStart, result.Members, execution);
   PointArray<Index>().swap(assign);
   if (abort(0.9))
@@ -389,14 +389,16 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
       const CellFrame& frame = frames[info[s].Owner];
       out.MemberBegin = memberStart[s];
       out.ClusterSize = clusterSize[s];
-      const Index* first = result.Members.data() + memberStart[s];
-      Index nearest = info[s].KeyPoint >= 0 ? original.Order[info[s].KeyPoint] : -1;
+      const Index* first = result.Members.data() + memberStart[s]; // slots
+      // The member nearest the sample, as a slot (ties: by position, then
+      // by input point id).
+      Index nearest = info[s].KeyPoint;
       double bestD = std::numeric_limits<double>::infinity();
       Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
       double mean[3] = { 0.0, 0.0, 0.0 };
       for (Index m = 0; m < clusterSize[s]; ++m)
       {
-        const double* x = xyz + 3 * first[m];
+        const double* x = P + 3 * first[m];
         for (int a = 0; a < 3; ++a)
         {
           mean[a] += x[a];
@@ -406,9 +408,10 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
         // Ties, rounding included (a two-point cluster's centre is as near
         // to both): the first position, whatever the order of the points.
         // (Duplicates: the lower id.)
-        const double* y = nearest < 0 ? nullptr : xyz + 3 * nearest;
+        const double* y = nearest < 0 ? nullptr : P + 3 * nearest;
         if (NearlyEqual(d, bestD)
-            ? !y || PositionBefore(x, y) || (!PositionBefore(y, x) && first[m] < nearest)
+            ? !y || PositionBefore(x, y) ||
+              (!PositionBefore(y, x) && original.Order[first[m]] < original.Order[nearest])
             : d < bestD)
         {
           bestD = d;
@@ -417,7 +420,7 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
         if (normals)
         {
           Eigen::Vector3d v;
-          normals.Get(first[m], v.data());
+          normals.Get(original.Order[first[m]], v.data());
           if (v.allFinite())
           {
             normalSum += v;
@@ -426,21 +429,22 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
       }
       if (nearest < 0)
       {
-        nearest = original.CellPoints(info[s].Owner)[0]; // no member could be found
+        nearest = original.CellStart[info[s].Owner]; // no member could be found
       }
       const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
         !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
       // A key sample placed on its extreme point stands for that point, even
       // when the point joined another sample's cluster (a tie with a sample
       // at the same position): its position is exactly that input point.
-      out.Representative = samples.Fixed[s] && parameters.ExtremeKeyPoints && info[s].KeyPoint >= 0
-        ? original.Order[info[s].KeyPoint]
-        : nearest;
+      out.Representative = original.Order[samples.Fixed[s] && parameters.ExtremeKeyPoints &&
+            info[s].KeyPoint >= 0
+          ? info[s].KeyPoint
+          : nearest];
       // A free sample that is not snapped is its final cluster's centroid.
       const bool centroid = !snap && !samples.Fixed[s] && clusterSize[s] > 0;
       for (int a = 0; a < 3; ++a)
       {
-        out.Position[a] = snap ? xyz[3 * nearest + a]
+        out.Position[a] = snap ? P[3 * nearest + a]
                                : (centroid ? mean[a] / static_cast<double>(clusterSize[s]) : p[a]);
       }
       Eigen::Vector3d normal = frame.Normal();
@@ -465,8 +469,17 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
       snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
         clusterSize[s] > 1;
     }
-    BoundSnappedHoles(xyz, snapped, result, execution);
+    BoundSnappedHoles(P, snapped, result, execution); // (members are slots of P)
   }
+  // The members as input point ids; the cell-ordered copy is done with.
+  execution.Run(0, static_cast<Index>(result.Members.size()), [&](Index b, Index e) {
+    for (Index j = b; j < e; ++j)
+    {
+      result.Members[j] = original.Order[result.Members[j]];
+    }
+  });
+  cellOrdered.reset();
+  P = nullptr;
   if (parameters.OutputCell)
   {
     KeepOutputCells(result, info, grid, parameters);
