@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkASMPointDataAggregation.h"
 
+#include "vtkASMFilterUtilities.h"
+
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
@@ -122,14 +124,7 @@ struct MeanWorker
         }
       }
     };
-    if (parallel)
-    {
-      vtkSMPTools::For(0, count, body);
-    }
-    else
-    {
-      body(0, count);
-    }
+    asmvtk::For(parallel, 0, count, body);
   }
 
   // The common case, with raw pointers; 1 and 3 components (scalars,
