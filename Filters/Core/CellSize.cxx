@@ -163,7 +163,7 @@ PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
       {
         if (picked[i])
         {
-          std::copy_n(xyz + 3 * ids[i], 3, out);
+          CopyPoint(xyz + 3 * ids[i], out);
           out += 3;
         }
       }

@@ -71,6 +71,17 @@ inline void Prefetch(const void* p)
 #endif
 }
 
+/// Copies one point's three coordinates. In per-point loops, prefer it to
+/// std::copy of three doubles, which GCC turns into a call to memmove: a
+/// gather of 4 M scattered points into cell order took 170-210 ms that way
+/// and 75-85 ms with three assignments (one thread).
+inline void CopyPoint(const double* from, double* to)
+{
+  to[0] = from[0];
+  to[1] = from[1];
+  to[2] = from[2];
+}
+
 /// A std::allocator that default-initialises: resize() leaves numbers
 /// uninitialised instead of zero-filling them serially. For large per-point
 /// arrays that a parallel loop writes in full before anything reads them

@@ -179,7 +179,11 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
   execution.Run(0, total, [&](Index b, Index e) {
     for (Index i = b; i < e; ++i)
     {
-      std::copy(xyz + 3 * original.Order[i], xyz + 3 * original.Order[i] + 3, &cellOrdered[3 * i]);
+      if (i + 16 < e)
+      {
+        Prefetch(xyz + 3 * original.Order[i + 16]);
+      }
+      CopyPoint(xyz + 3 * original.Order[i], &cellOrdered[3 * i]);
     }
   });
   const double* P = cellOrdered.get(); // released before the output

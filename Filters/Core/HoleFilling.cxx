@@ -346,10 +346,12 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       aside.insert(aside.end(), values + width * s, values + width * (s + 1));
     }
+    // (Element by element: std::copy of one to three numbers is a call to
+    // memmove per sample. Ranges of one value never overlap unless equal.)
     auto move = [width](const T* from, T* to) {
-      if (from != to) // (ranges of one value never overlap otherwise)
+      for (int a = 0; a < width && from != to; ++a)
       {
-        std::copy(from, from + width, to);
+        to[a] = from[a];
       }
     };
     Index kept = 0;
