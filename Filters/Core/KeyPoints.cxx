@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -79,8 +80,79 @@ struct DisjointSets
 
 using BinKey = std::pair<std::int64_t, std::int64_t>;
 
-// Up to this many points, LinkInPlane tests every pair.
-constexpr std::size_t SmallLinkSize = 32;
+// Up to this many points (at most 64: one bit each), LinkInPlane tests
+// every pair (a band of a cell holds 20-70 points; 64 costs a quarter less
+// than 32 with the bins above it).
+constexpr std::size_t SmallLinkSize = 64;
+static_assert(SmallLinkSize <= 64, "one bit per point of a small band");
+
+// The position of the lowest set bit of a non-zero mask.
+int LowestBit(std::uint64_t mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_ctzll(mask);
+#else
+  int k = 0;
+  while (!(mask & 1))
+  {
+    mask >>= 1;
+    ++k;
+  }
+  return k;
+#endif
+}
+
+// LinkInPlane of at most SmallLinkSize points: each point's links as a bit
+// mask, then each component as the closure of its first member. Components
+// come in order of their first member, members in subset order: what
+// Components gives for the same links.
+Clusters LinkSmallInPlane(const LocalPoints& q, const std::vector<Index>& subset, double d2)
+{
+  const std::size_t n = subset.size();
+  double u[SmallLinkSize], v[SmallLinkSize];
+  std::uint64_t links[SmallLinkSize];
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d& p = q[subset[i]];
+    u[i] = p[0];
+    v[i] = p[1];
+    links[i] = std::uint64_t(1) << i;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::uint64_t mask = 0;
+    for (std::size_t j = i + 1; j < n; ++j)
+    {
+      const double dx = u[i] - u[j], dy = v[i] - v[j];
+      const std::uint64_t linked = dx * dx + dy * dy <= d2 ? 1 : 0;
+      mask |= linked << j;
+      links[j] |= linked << i;
+    }
+    links[i] |= mask;
+  }
+  Clusters out;
+  out.Members.reserve(n);
+  std::uint64_t left = n == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << n) - 1;
+  while (left)
+  {
+    std::uint64_t component = left & (~left + 1); // its first member
+    std::uint64_t frontier = component;
+    while (frontier)
+    {
+      const std::uint64_t fresh = links[LowestBit(frontier)] & ~component;
+      frontier &= frontier - 1;
+      component |= fresh;
+      frontier |= fresh;
+    }
+    left &= ~component;
+    for (; component; component &= component - 1)
+    {
+      out.Members.push_back(subset[LowestBit(component)]);
+    }
+    out.Offsets.push_back(static_cast<Index>(out.Members.size()));
+  }
+  return out;
+}
 
 std::int64_t BinOf(double u, double side)
 {
@@ -263,21 +335,7 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
   {
     // Few points (the usual band of a cell): every pair, cheaper than the
     // bins; the same links, so the same components.
-    DisjointSets sets(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Eigen::Vector3d& p = q[subset[i]];
-      for (std::size_t j = i + 1; j < n; ++j)
-      {
-        const Eigen::Vector3d& r = q[subset[j]];
-        const double dx = p[0] - r[0], dy = p[1] - r[1];
-        if (dx * dx + dy * dy <= d2)
-        {
-          sets.Union(static_cast<Index>(i), static_cast<Index>(j));
-        }
-      }
-    }
-    return Components(subset, sets);
+    return LinkSmallInPlane(q, subset, d2);
   }
   {
     DisjointSets sets(n);

@@ -193,13 +193,16 @@ TEST(FastPaths, BoundsAndCellSizeIndependentOfCuts)
 
 TEST(FastPaths, LinkInPlaneMatchesConnectedComponents)
 {
-  // Clumps of points: few and many points, dense and sparse bins (the
+  // Clumps of points: few and many points (up to 64, all pairs as bit
+  // masks; the first trials sit on that border), dense and sparse bins (the
   // sparse ones take the sorted-bin path).
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int trial = 0; trial < 30; ++trial)
+  for (int trial = 0; trial < 34; ++trial)
   {
-    const std::size_t n = 2 + static_cast<std::size_t>(u(rng) * (trial < 15 ? 60 : 600));
+    const std::size_t n = trial < 4
+      ? 62 + static_cast<std::size_t>(trial)
+      : 2 + static_cast<std::size_t>(u(rng) * (trial < 19 ? 120 : 600));
     const double spread = trial % 3 == 0 ? 100.0 : 1.0;
     asmcore::LocalPoints q;
     for (std::size_t i = 0; i < n; ++i)
