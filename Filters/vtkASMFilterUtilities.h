@@ -90,12 +90,13 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 }
 
 /// The coordinates of `points` as N x 3 doubles, and in `ids` the ids of the
-/// points whose coordinates are finite, ascending. Doubles are used in place;
-/// other types are converted into `copy` (not zero-filled first). Both passes
-/// run in parallel (vtkSMPTools) over fixed blocks: the result does not
-/// depend on the thread count.
+/// points whose coordinates are finite, ascending: IdView::Identity(N) when
+/// all are (no list), else a view of `idList`, which holds them. Doubles are
+/// used in place; other types are converted into `copy` (not zero-filled
+/// first). Both passes run in parallel (vtkSMPTools) over fixed blocks: the
+/// result does not depend on the thread count.
 inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
-  asmcore::PointIds& ids, bool threads = true)
+  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads = true)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -148,13 +149,20 @@ inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<doubl
   {
     finite[k + 1] += finite[k];
   }
-  ids.resize(static_cast<std::size_t>(finite[blocks]));
+  idList.clear();
+  if (finite[blocks] == n)
+  {
+    ids = asmcore::IdView::Identity(static_cast<std::size_t>(n));
+    return xyz;
+  }
+  idList.resize(static_cast<std::size_t>(finite[blocks]));
+  ids = idList;
   For(threads, 0, blocks, [&](vtkIdType first, vtkIdType last) {
     for (Index k = first; k < last; ++k)
     {
       const Index begin = k * blockSize;
       const Index end = std::min(n, begin + blockSize);
-      Index* out = ids.data() + finite[k];
+      Index* out = idList.data() + finite[k];
       if (finite[k + 1] - finite[k] == end - begin)
       {
         for (Index i = begin; i < end; ++i)

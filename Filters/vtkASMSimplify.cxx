@@ -117,16 +117,18 @@ int vtkASMSimplify::RequestData(
 
   // Coordinates, finite points, and the requested output size.
   std::unique_ptr<double[]> coordinateCopy;
-  asmcore::PointIds ids;
+  asmcore::PointIds idList; // (empty when every point is valid: ids is the identity)
+  asmcore::IdView ids;
   const double* xyz = numberOfPoints > 0
-    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, ids, threads)
+    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, idList, ids, threads)
     : nullptr;
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   vtkIdType skipped = numberOfPoints - valid;
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
   if (distributed)
   {
-    ids = asmvtk::WithoutDuplicateGhosts(input, ids);
+    idList = asmvtk::WithoutDuplicateGhosts(input, ids);
+    ids = idList;
     valid = comm.Sum(static_cast<Index>(ids.size()));
     skipped = comm.Sum(static_cast<Index>(skipped));
     pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
@@ -199,7 +201,8 @@ int vtkASMSimplify::RequestData(
       vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
     }
     xyz = share.Cloud.Xyz.data();
-    ids.assign(share.Cloud.Ids.begin(), share.Cloud.Ids.end());
+    idList.assign(share.Cloud.Ids.begin(), share.Cloud.Ids.end());
+    ids = idList;
     coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
@@ -293,7 +296,8 @@ int vtkASMSimplify::RequestData(
   if (!this->GenerateCurvature)
   {
     coordinateCopy.reset();
-    asmcore::PointIds().swap(ids);
+    asmcore::PointIds().swap(idList);
+    ids = asmcore::IdView();
     xyz = nullptr;
   }
 

@@ -188,8 +188,9 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   using namespace asmcore;
   double t0 = Cpu();
   std::unique_ptr<double[]> copy;
-  asmcore::PointIds ids;
-  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, ids);
+  asmcore::PointIds idList;
+  asmcore::IdView ids;
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids);
   double t1 = Cpu();
   double t2 = Cpu();
   const Index target = static_cast<Index>(std::llround(fraction * ids.size()));

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -147,33 +148,87 @@ using PointIds = PointArray<Index>;
 
 /// A read-only view of a list of point ids (indices into an xyz array): what
 /// the steps take, so that a caller may hold its ids in a std::vector or in
-/// a PointArray (which a parallel loop fills without a serial zero fill).
+/// a PointArray (which a parallel loop fills without a serial zero fill), or
+/// hold none at all: IdView::Identity(n) stands for the ids 0, 1, ..., n - 1
+/// (a cloud whose points are all valid) without 8 bytes per point.
 /// It does not own the ids: the list must outlive the call.
 class IdView
 {
 public:
+  /// Reads the ids in order (a counter for the identity).
+  class Iterator
+  {
+  public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = Index;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Index*;
+    using reference = Index;
+
+    Iterator(const Index* first, std::size_t i)
+      : First(first)
+      , I(i)
+    {
+    }
+    Index operator*() const { return this->First ? this->First[this->I] : static_cast<Index>(this->I); }
+    Iterator& operator++()
+    {
+      ++this->I;
+      return *this;
+    }
+    Iterator operator++(int)
+    {
+      Iterator old = *this;
+      ++this->I;
+      return old;
+    }
+    bool operator==(const Iterator& other) const { return this->I == other.I; }
+    bool operator!=(const Iterator& other) const { return this->I != other.I; }
+
+  private:
+    const Index* First;
+    std::size_t I;
+  };
+
   IdView() = default;
   template <typename Allocator>
   IdView(const std::vector<Index, Allocator>& ids) // NOLINT: implicit on purpose
     : First(ids.data())
     , Count(ids.size())
+    , Listed(true)
   {
   }
   IdView(const Index* first, std::size_t count)
     : First(first)
     , Count(count)
+    , Listed(true)
   {
   }
-  const Index* data() const { return this->First; }
+  /// The ids 0, 1, ..., count - 1, with no list behind them.
+  static IdView Identity(std::size_t count)
+  {
+    IdView all;
+    all.Count = count;
+    return all;
+  }
+  /// True for Identity() (an empty list is both).
+  bool IsIdentity() const { return !this->Listed; }
   std::size_t size() const { return this->Count; }
   bool empty() const { return this->Count == 0; }
-  const Index* begin() const { return this->First; }
-  const Index* end() const { return this->First + this->Count; }
-  const Index& operator[](std::size_t i) const { return this->First[i]; }
+  Iterator begin() const { return Iterator(this->List(), 0); }
+  Iterator end() const { return Iterator(this->List(), this->Count); }
+  Index operator[](std::size_t i) const
+  {
+    return this->Listed ? this->First[i] : static_cast<Index>(i);
+  }
 
 private:
+  // (nullptr for the identity, which the iterator reads as a counter.)
+  const Index* List() const { return this->Listed ? this->First : nullptr; }
+
   const Index* First = nullptr;
   std::size_t Count = 0;
+  bool Listed = false;
 };
 
 /// Optional input normals, three floats or three doubles per point, read

@@ -313,12 +313,11 @@ inline void MarkCells(const double* xyz, IdView ids, const GridSpec& spec,
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
     const FastCellOf cellOf(spec); // a local copy: registers, no aliasing with the stores
     const OccupancyBitmap::Numbering numbering = bitmap.GetNumbering();
-    const Index* id = ids.data();
     std::uint64_t last = ~std::uint64_t(0);
     for (Index i = b; i < e; ++i)
     {
       std::uint64_t ijk[3];
-      cellOf(xyz + 3 * id[i], ijk);
+      cellOf(xyz + 3 * ids[i], ijk);
       const std::uint64_t lin = ijk[0] + numbering.D0 * ijk[1] + numbering.D01 * ijk[2];
       if (linear)
       {

@@ -149,9 +149,17 @@ TEST(FastPaths, IdViewsOfEitherListGiveTheSameGrid)
   const asmcore::IdView part(ids.data() + 1000, 2000);
   ASSERT_EQ(part.size(), 2000u);
   EXPECT_EQ(part[0], ids[1000]);
-  EXPECT_EQ(*(part.end() - 1), ids[2999]);
+  EXPECT_EQ(part[part.size() - 1], ids[2999]);
   ExpectSameGrid(asmcore::BuildCellGrid(c.data(), part, spec, UnevenTwoThreads()),
     ReferenceGrid(c.data(), std::vector<Index>(part.begin(), part.end()), spec));
+  // The identity stands for 0 ... n - 1 without a list.
+  const asmcore::IdView all = asmcore::IdView::Identity(ids.size());
+  ASSERT_TRUE(all.IsIdentity());
+  ASSERT_EQ(all.size(), ids.size());
+  EXPECT_EQ(std::vector<Index>(all.begin(), all.end()), ids);
+  EXPECT_EQ(all[4321], 4321);
+  EXPECT_FALSE(asmcore::IdView(ids).IsIdentity());
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), all, spec, UnevenTwoThreads()), reference);
 }
 
 TEST(FastPaths, ResizeInParallelWritesEveryNewElement)
