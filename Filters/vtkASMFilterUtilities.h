@@ -89,23 +89,30 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 #endif
 }
 
-/// The coordinates of `points` as N x 3 doubles, and in `ids` the ids of the
-/// points whose coordinates are finite, ascending: IdView::Identity(N) when
-/// all are (no list), else a view of `idList`, which holds them. Doubles are
-/// used in place; other types are converted into `copy` (not zero-filled
-/// first). Both passes run in parallel (vtkSMPTools) over fixed blocks: the
-/// result does not depend on the thread count.
-inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
-  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads = true)
+/// The coordinates of `points`, and in `ids` the ids of the points whose
+/// coordinates are finite, ascending: IdView::Identity(N) when all are (no
+/// list), else a view of `idList`, which holds them. Doubles are used in
+/// place, and so are floats with `floatsInPlace` (the core widens them as it
+/// reads them); other types are converted into `copy` as doubles (not
+/// zero-filled first). Both passes run in parallel (vtkSMPTools) over fixed
+/// blocks: the result does not depend on the thread count.
+inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points,
+  std::unique_ptr<double[]>& copy, asmcore::PointIds& idList, asmcore::IdView& ids,
+  bool threads = true, bool floatsInPlace = false)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
   const Index n = points->GetNumberOfPoints();
-  const double* xyz = nullptr;
+  asmcore::Coordinates xyz;
   auto* floats = vtkFloatArray::SafeDownCast(data);
   if (auto* doubles = vtkDoubleArray::SafeDownCast(data))
   {
     xyz = doubles->GetPointer(0);
+  }
+  else if (floats && floatsInPlace)
+  {
+    xyz = floats->GetPointer(0);
+    floats = nullptr; // (nothing to convert)
   }
   else
   {
@@ -139,7 +146,8 @@ inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<doubl
       Index count = 0;
       for (Index i = begin; i < end; ++i)
       {
-        const double* p = xyz + 3 * i;
+        double p[3];
+        xyz.Get(i, p);
         count += (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) ? 1 : 0;
       }
       finite[k + 1] = count;
@@ -173,7 +181,8 @@ inline const double* PrepareCoordinates(vtkPoints* points, std::unique_ptr<doubl
       }
       for (Index i = begin; i < end; ++i)
       {
-        const double* p = xyz + 3 * i;
+        double p[3];
+        xyz.Get(i, p);
         if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
         {
           *out++ = i;

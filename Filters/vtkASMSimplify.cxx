@@ -119,9 +119,15 @@ int vtkASMSimplify::RequestData(
   std::unique_ptr<double[]> coordinateCopy;
   asmcore::PointIds idList; // (empty when every point is valid: ids is the identity)
   asmcore::IdView ids;
-  const double* xyz = numberOfPoints > 0
-    ? asmvtk::PrepareCoordinates(input->GetPoints(), coordinateCopy, idList, ids, threads)
-    : nullptr;
+  // A float cloud is read in place (the default mode reads it once, into its
+  // cell-ordered copy; the paper mode widens it in its core), except where a
+  // double copy serves twice (the paper mode's curvature) or is sent on (MPI).
+  const bool floatsInPlace =
+    !distributed && !(this->Mode == PAPER && this->GenerateCurvature);
+  asmcore::Coordinates xyz = numberOfPoints > 0
+    ? asmvtk::PrepareCoordinates(
+        input->GetPoints(), coordinateCopy, idList, ids, threads, floatsInPlace)
+    : asmcore::Coordinates();
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   vtkIdType skipped = numberOfPoints - valid;
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
@@ -195,7 +201,7 @@ int vtkASMSimplify::RequestData(
   {
     // One grid, owners, halo, budgets; then the core runs on this process's
     // cells (owned and halo) as if they were the whole input.
-    share = asmvtk::PrepareSimplify(comm, input, xyz, ids, parameters);
+    share = asmvtk::PrepareSimplify(comm, input, xyz.Doubles, ids, parameters);
     for (const std::string& dropped : share.Cloud.Dropped)
     {
       vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
@@ -298,7 +304,7 @@ int vtkASMSimplify::RequestData(
     coordinateCopy.reset();
     asmcore::PointIds().swap(idList);
     ids = asmcore::IdView();
-    xyz = nullptr;
+    xyz = asmcore::Coordinates();
   }
 
   // Points and one vertex cell each.
@@ -388,8 +394,12 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
-    if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
+    // (Floats read in place so far are widened now, after the core's peak.)
+    const double* points = xyz.Doubles
+      ? xyz.Doubles
+      : asmvtk::TuplesAsDoubles(input->GetPoints()->GetData(), coordinateCopy);
+    const asmcore::Neighbors tree(points, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
+    if (!asmvtk::AddCurvatureArrays(outPD, points, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95, threads)))
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");

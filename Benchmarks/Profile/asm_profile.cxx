@@ -190,7 +190,7 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   std::unique_ptr<double[]> copy;
   asmcore::PointIds idList;
   asmcore::IdView ids;
-  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids);
+  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids).Doubles;
   double t1 = Cpu();
   double t2 = Cpu();
   const Index target = static_cast<Index>(std::llround(fraction * ids.size()));

@@ -32,7 +32,7 @@ namespace
 // cell too sparse to get a sample of its own (a far outlier, a stray point)
 // counts for its share only.
 double EffectiveOccupiedCells(
-  const double* xyz, IdView ids, const GridSpec& spec, double minPoints)
+  Coordinates xyz, IdView ids, const GridSpec& spec, double minPoints)
 {
   // Points per cell in a hash table, then the cells in increasing key order
   // (the order of the sum): no sort of one key per point.
@@ -41,7 +41,9 @@ double EffectiveOccupiedCells(
   Index* run = nullptr;
   for (Index id : ids)
   {
-    const std::uint64_t key = spec.KeyOf(xyz + 3 * id);
+    double p[3];
+    xyz.Get(id, p);
+    const std::uint64_t key = spec.KeyOf(p);
     if (key != last)
     {
       table.Insert(key);
@@ -117,7 +119,7 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   return SearchCellSize(bounds, targetCells, countOccupied, start);
 }
 
-PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
+PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
   double totalPoints, double targetCells, const Execution& execution)
 {
   PointArray<double> subset;
@@ -142,7 +144,9 @@ PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
       const Index end = BlockBegin(n, blocks, k + 1);
       for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
       {
-        const bool pick = (CoordinateHash(xyz + 3 * ids[i]) >> 32) < below;
+        double p[3];
+        xyz.Get(ids[i], p);
+        const bool pick = (CoordinateHash(p) >> 32) < below;
         picked[i] = pick ? 1 : 0;
         count += pick ? 1 : 0;
       }
@@ -163,7 +167,7 @@ PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
       {
         if (picked[i])
         {
-          CopyPoint(xyz + 3 * ids[i], out);
+          xyz.Get(ids[i], out);
           out += 3;
         }
       }
@@ -175,7 +179,7 @@ PointArray<double> CellSizeSubsample(const double* xyz, IdView ids,
 namespace
 {
 // The search on the subsample, as a start for the full search (0: none).
-double SubsampleStart(const double* xyz, IdView ids, const Bounds& bounds,
+double SubsampleStart(Coordinates xyz, IdView ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
   const PointArray<double> subset =
@@ -210,7 +214,7 @@ bool SparseCellsDominate(double effective, double raw)
 }
 
 // The outlier-robust search: each cell counted by min(1, points / minimum).
-double SearchIgnoringSparseCells(const double* xyz, IdView ids,
+double SearchIgnoringSparseCells(Coordinates xyz, IdView ids,
   const Bounds& bounds, double targetCells)
 {
   const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
@@ -219,13 +223,13 @@ double SearchIgnoringSparseCells(const double* xyz, IdView ids,
 }
 } // namespace
 
-double AutomaticCellSize(const double* xyz, IdView ids, const Bounds& bounds,
+double AutomaticCellSize(Coordinates xyz, IdView ids, const Bounds& bounds,
   double targetCells, const Execution& execution)
 {
   return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution).Spec.CellSize;
 }
 
-CellGrid BuildAutomaticCellGrid(const double* xyz, IdView ids,
+CellGrid BuildAutomaticCellGrid(Coordinates xyz, IdView ids,
   const Bounds& bounds, double targetCells, const Execution& execution)
 {
   const double maxExtent = bounds.MaxExtent();

@@ -20,13 +20,13 @@ namespace asmcore
 /// (about 32 points per target cell), then from there on all points, usually
 /// in one or two passes. When sparse cells (far outliers) make up a fifth of the
 /// count, searches again counting each cell by its share of a sample.
-VTKASMFILTERS_EXPORT double AutomaticCellSize(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT double AutomaticCellSize(Coordinates xyz, IdView ids,
   const Bounds& bounds, double targetCells, const Execution& execution = {});
 
 /// BuildCellGrid with the cell size of AutomaticCellSize, searched and built
 /// in one go (the grid of the search's last count is reused when it is the
 /// answer).
-VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(const double* xyz,
+VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(Coordinates xyz,
   IdView ids, const Bounds& bounds, double targetCells,
   const Execution& execution = {});
 
@@ -43,7 +43,7 @@ VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targe
 /// hash of the point's coordinates, so that the same points are picked
 /// whatever the order or the partition of the cloud over processes; empty
 /// when totalPoints < 200000 (the search then runs on all points).
-VTKASMFILTERS_EXPORT PointArray<double> CellSizeSubsample(const double* xyz,
+VTKASMFILTERS_EXPORT PointArray<double> CellSizeSubsample(Coordinates xyz,
   IdView ids, double totalPoints, double targetCells,
   const Execution& execution = {});
 } // namespace asmcore

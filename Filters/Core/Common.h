@@ -231,34 +231,50 @@ private:
   bool Listed = false;
 };
 
-/// Optional input normals, three floats or three doubles per point, read
-/// where they are (a float array needs no double copy). Converts from a
-/// double pointer or nullptr (no normals).
-struct NormalField
+/// Three floats or three doubles per point, read where they are (floats
+/// widened exactly): the input coordinates (a float cloud needs no double
+/// copy for its grid) or its optional normals. Converts from a double
+/// pointer, a float pointer or nullptr (none).
+struct Vec3Field
 {
   const double* Doubles = nullptr;
   const float* Floats = nullptr;
 
-  NormalField() = default;
-  NormalField(std::nullptr_t) {}
-  NormalField(const double* doubles)
+  Vec3Field() = default;
+  Vec3Field(std::nullptr_t) {} // NOLINT: implicit on purpose
+  Vec3Field(const double* doubles) // NOLINT: implicit on purpose
     : Doubles(doubles)
   {
   }
-  NormalField(const float* floats)
+  Vec3Field(const float* floats) // NOLINT: implicit on purpose
     : Floats(floats)
   {
   }
   explicit operator bool() const { return this->Doubles || this->Floats; }
-  /// Normal of point `id` into out[3] (floats widened exactly).
+  /// The three numbers of point `id` into out[3].
   void Get(Index id, double out[3]) const
   {
-    for (int a = 0; a < 3; ++a)
+    if (this->Doubles)
     {
-      out[a] = this->Doubles ? this->Doubles[3 * id + a] : static_cast<double>(this->Floats[3 * id + a]);
+      CopyPoint(this->Doubles + 3 * id, out);
+      return;
     }
+    const float* p = this->Floats + 3 * id;
+    out[0] = static_cast<double>(p[0]);
+    out[1] = static_cast<double>(p[1]);
+    out[2] = static_cast<double>(p[2]);
+  }
+  /// Where point `id`'s numbers are (for a prefetch).
+  const void* Address(Index id) const
+  {
+    return this->Doubles ? static_cast<const void*>(this->Doubles + 3 * id)
+                         : static_cast<const void*>(this->Floats + 3 * id);
   }
 };
+/// Optional input normals.
+using NormalField = Vec3Field;
+/// Input coordinates, doubles or floats.
+using Coordinates = Vec3Field;
 
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);

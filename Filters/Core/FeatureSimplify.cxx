@@ -143,7 +143,7 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
   return 1 + 2 * CrossIterations(parameters) + 2;
 }
 
-SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
+SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   NormalField normals, const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
@@ -181,9 +181,9 @@ SimplifyResult SimplifyFeaturePreserving(const double* xyz, IdView ids,
     {
       if (i + 16 < e)
       {
-        Prefetch(xyz + 3 * original.Order[i + 16]);
+        Prefetch(xyz.Address(original.Order[i + 16]));
       }
-      CopyPoint(xyz + 3 * original.Order[i], &cellOrdered[3 * i]);
+      xyz.Get(original.Order[i], &cellOrdered[3 * i]);
     }
   });
   const double* P = cellOrdered.get(); // released before the output

@@ -63,7 +63,7 @@ VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 /// Simplify in the feature-preserving mode (see above); same contract as
 /// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever
 /// the thread count, Members partitioning the input points among the samples.
-VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(const double* xyz,
+VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(Coordinates xyz,
   IdView ids, NormalField normals, const SimplifyParameters& parameters,
   const Execution& execution = {});
 } // namespace asmcore

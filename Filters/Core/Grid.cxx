@@ -45,7 +45,7 @@ double Bounds::MaxExtent() const
 using namespace occupancy;
 
 
-Bounds ComputeBounds(const double* xyz, IdView ids, const Execution& execution)
+Bounds ComputeBounds(Coordinates xyz, IdView ids, const Execution& execution)
 {
   Bounds b;
   if (ids.empty())
@@ -68,7 +68,8 @@ Bounds ComputeBounds(const double* xyz, IdView ids, const Execution& execution)
       const Index end = BlockBegin(n, blocks, k + 1);
       for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
       {
-        const double* p = xyz + 3 * ids[i];
+        double p[3];
+        xyz.Get(ids[i], p);
         for (int a = 0; a < 3; ++a)
         {
           pb.Min[a] = std::min(pb.Min[a], p[a]);
@@ -91,7 +92,7 @@ Bounds ComputeBounds(const double* xyz, IdView ids, const Execution& execution)
 }
 
 void ComputeCentroid(
-  const double* xyz, IdView ids, double centroid[3], const Execution& execution)
+  Coordinates xyz, IdView ids, double centroid[3], const Execution& execution)
 {
   centroid[0] = centroid[1] = centroid[2] = 0.0;
   const Index n = static_cast<Index>(ids.size());
@@ -108,7 +109,8 @@ void ComputeCentroid(
       const Index end = BlockBegin(n, blocks, k + 1);
       for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
       {
-        const double* p = xyz + 3 * ids[i];
+        double p[3];
+        xyz.Get(ids[i], p);
         sum[0] += p[0];
         sum[1] += p[1];
         sum[2] += p[2];
@@ -239,7 +241,7 @@ CellGrid FinishCellGrid(IdView ids, CellMarks& marks, const Execution& execution
 } // namespace occupancy
 
 CellGrid BuildCellGrid(
-  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   if (n == 0)
@@ -273,7 +275,9 @@ CellGrid BuildCellGrid(
       for (Index i = b; i < e; ++i)
       {
         std::uint64_t ijk[3];
-        cellOf(xyz + 3 * ids[i], ijk);
+        double p[3];
+        xyz.Get(ids[i], p);
+        cellOf(p, ijk);
         cell[i] = static_cast<CellNumber>(table.Find(GridSpec::PackKey(ijk)));
       }
     });
@@ -297,7 +301,7 @@ namespace
 // number of partitions (by a hash of the key, not the table's) counts its
 // keys in a table of its own, a sixteenth of the size.
 Index CountDistinctCells(
-  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   std::unique_ptr<std::uint64_t[]> key(new std::uint64_t[static_cast<std::size_t>(n)]);
@@ -306,7 +310,9 @@ Index CountDistinctCells(
     for (Index i = b; i < e; ++i)
     {
       std::uint64_t ijk[3];
-      cellOf(xyz + 3 * ids[i], ijk);
+      double p[3];
+      xyz.Get(ids[i], p);
+      cellOf(p, ijk);
       key[i] = GridSpec::PackKey(ijk);
     }
   });
@@ -345,7 +351,7 @@ Index CountDistinctCells(
 } // namespace
 
 Index CountOccupiedCells(
-  const double* xyz, IdView ids, const GridSpec& spec, const Execution& execution)
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution)
 {
   if (ids.empty())
   {

@@ -34,11 +34,11 @@ struct VTKASMFILTERS_EXPORT Bounds
 
 /// Bounds of the points xyz[3*id] for id in ids.
 VTKASMFILTERS_EXPORT Bounds ComputeBounds(
-  const double* xyz, IdView ids, const Execution& execution = {});
+  Coordinates xyz, IdView ids, const Execution& execution = {});
 
 /// Centroid of the points xyz[3*id] for id in ids (0 for none), summed in
 /// fixed blocks: the same value whatever the thread count.
-VTKASMFILTERS_EXPORT void ComputeCentroid(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT void ComputeCentroid(Coordinates xyz, IdView ids,
   double centroid[3], const Execution& execution = {});
 
 /// A uniform grid: origin, cubic cell edge, and the number of cells per axis.
@@ -96,11 +96,11 @@ struct VTKASMFILTERS_EXPORT CellGrid
 };
 
 /// Hash the points into the grid `spec` (deterministic: ties by point id).
-VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(Coordinates xyz, IdView ids,
   const GridSpec& spec, const Execution& execution = {});
 
 /// Number of non-empty cells of `spec`.
-VTKASMFILTERS_EXPORT Index CountOccupiedCells(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT Index CountOccupiedCells(Coordinates xyz, IdView ids,
   const GridSpec& spec, const Execution& execution = {});
 
 } // namespace asmcore

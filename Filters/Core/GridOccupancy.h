@@ -287,14 +287,16 @@ private:
 
 // Distinct keys of the points, in a table (sequential: the fallback for
 // grids too large for a bitmap).
-inline void InsertKeys(const double* xyz, IdView ids, const GridSpec& spec, KeyTable& table)
+inline void InsertKeys(Coordinates xyz, IdView ids, const GridSpec& spec, KeyTable& table)
 {
   const FastCellOf cellOf(spec);
   std::uint64_t last = KeyTable::Empty;
   for (Index id : ids)
   {
     std::uint64_t ijk[3];
-    cellOf(xyz + 3 * id, ijk);
+    double p[3];
+    xyz.Get(id, p);
+    cellOf(p, ijk);
     const std::uint64_t key = GridSpec::PackKey(ijk);
     if (key != last)
     {
@@ -307,7 +309,7 @@ inline void InsertKeys(const double* xyz, IdView ids, const GridSpec& spec, KeyT
 // Marks the cells of the points in the bitmap; also stores each point's
 // linear cell number in `linear` when not null (the bitmap then has fewer
 // than 2^32 bits).
-inline void MarkCells(const double* xyz, IdView ids, const GridSpec& spec,
+inline void MarkCells(Coordinates xyz, IdView ids, const GridSpec& spec,
   OccupancyBitmap& bitmap, std::uint32_t* linear, const Execution& execution)
 {
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
@@ -317,7 +319,9 @@ inline void MarkCells(const double* xyz, IdView ids, const GridSpec& spec,
     for (Index i = b; i < e; ++i)
     {
       std::uint64_t ijk[3];
-      cellOf(xyz + 3 * ids[i], ijk);
+      double p[3];
+      xyz.Get(ids[i], p);
+      cellOf(p, ijk);
       const std::uint64_t lin = ijk[0] + numbering.D0 * ijk[1] + numbering.D01 * ijk[2];
       if (linear)
       {
@@ -346,7 +350,7 @@ struct CellMarks
   bool Valid = false;
 
   // False (and nothing marked) when the grid is too large for a bitmap.
-  bool Mark(const double* xyz, IdView ids, const GridSpec& spec,
+  bool Mark(Coordinates xyz, IdView ids, const GridSpec& spec,
     const Execution& execution)
   {
     this->Valid = false;

@@ -458,7 +458,7 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   return CellShares(capacity, variation, parameters, exponent);
 }
 
-CellGrid BuildRunGrid(const double* xyz, IdView ids,
+CellGrid BuildRunGrid(Coordinates xyz, IdView ids,
   const SimplifyParameters& parameters, Index target, const Execution& execution)
 {
   if (parameters.Grid)
@@ -493,13 +493,12 @@ void SummarizeKeyPoints(SimplifyResult& result)
   result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
 }
 
-SimplifyResult Simplify(const double* xyz, IdView ids, NormalField normals,
+namespace
+{
+// The paper's pipeline (Simplify.h).
+SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
-  if (parameters.Mode == SimplifyMode::FeaturePreserving)
-  {
-    return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
-  }
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
   const Index target = parameters.CellBudget
@@ -726,5 +725,34 @@ SimplifyResult Simplify(const double* xyz, IdView ids, NormalField normals,
 
   SummarizeKeyPoints(result);
   return result;
+}
+} // namespace
+
+SimplifyResult Simplify(Coordinates xyz, IdView ids, NormalField normals,
+  const SimplifyParameters& parameters, const Execution& execution)
+{
+  if (parameters.Mode == SimplifyMode::FeaturePreserving)
+  {
+    return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
+  }
+  if (xyz.Doubles || ids.empty())
+  {
+    return SimplifyPaper(xyz.Doubles, ids, normals, parameters, execution);
+  }
+  // The paper mode reads the points in place, as doubles: floats are
+  // widened into a copy (up to the largest id).
+  Index last = static_cast<Index>(ids.size()) - 1;
+  for (std::size_t i = 0; !ids.IsIdentity() && i < ids.size(); ++i)
+  {
+    last = std::max(last, ids[i]);
+  }
+  PointArray<double> widened(static_cast<std::size_t>(3 * (last + 1)));
+  execution.Run(0, last + 1, [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      xyz.Get(i, widened.data() + 3 * i);
+    }
+  });
+  return SimplifyPaper(widened.data(), ids, normals, parameters, execution);
 }
 } // namespace asmcore

@@ -167,7 +167,7 @@ VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>
 /// runs), else cells of edge parameters.CellSize when it is positive and
 /// finite, else the automatic cell size for about target / SamplesPerCell
 /// non-empty cells (BuildAutomaticCellGrid).
-VTKASMFILTERS_EXPORT CellGrid BuildRunGrid(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT CellGrid BuildRunGrid(Coordinates xyz, IdView ids,
   const SimplifyParameters& parameters, Index target, const Execution& execution = {});
 
 /// Fills NumberOfKeyPoints, AKPE and MKPE of `result` from its key samples.
@@ -177,7 +177,7 @@ VTKASMFILTERS_EXPORT void SummarizeKeyPoints(SimplifyResult& result);
 /// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be empty)
 /// orients the output normals; without it they point away from the cloud's
 /// centroid. Samples are ordered by grid cell, then key samples first.
-VTKASMFILTERS_EXPORT SimplifyResult Simplify(const double* xyz, IdView ids,
+VTKASMFILTERS_EXPORT SimplifyResult Simplify(Coordinates xyz, IdView ids,
   NormalField normals, const SimplifyParameters& parameters, const Execution& execution = {});
 } // namespace asmcore
 

@@ -23,6 +23,7 @@
 #include <array>
 #include <numeric>
 #include <random>
+#include <string>
 #include <utility>
 
 using asmcore::Index;
@@ -605,5 +606,66 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
     }
     const asmcore::CellFrame fit = asmcore::ComputeCellFrame(surface.data(), near.data(), k);
     ASSERT_EQ(std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid)), plane[i]) << i;
+  }
+}
+
+TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)
+{
+  // The filter hands a float cloud to the core as floats (no double copy):
+  // every step must see the same numbers as with the cloud widened to
+  // doubles, so the results must be identical, sample for sample. 250 k
+  // points reach the cell-size subsample; the second case lists its ids
+  // (every seventh point left out, as for non-finite points).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> noise(-0.01, 0.01);
+  const Cloud smooth = asmtest::Sphere(250000, 1.0, 4);
+  std::vector<float> floats(smooth.size());
+  Cloud widened(smooth.size());
+  for (std::size_t i = 0; i < smooth.size(); ++i)
+  {
+    floats[i] = static_cast<float>(smooth[i] * (1.0 + noise(rng)));
+    widened[i] = static_cast<double>(floats[i]);
+  }
+  const std::vector<Index> all = AllIds(widened);
+  std::vector<Index> some;
+  for (Index id = 0; id < 40000; ++id)
+  {
+    if (id % 7 != 3)
+    {
+      some.push_back(id);
+    }
+  }
+  for (const auto mode : { asmcore::SimplifyMode::FeaturePreserving, asmcore::SimplifyMode::Paper })
+  {
+    for (const bool listed : { false, true })
+    {
+      const asmcore::IdView ids =
+        listed ? asmcore::IdView(some) : asmcore::IdView::Identity(all.size());
+      asmcore::SimplifyParameters parameters;
+      parameters.Mode = mode;
+      parameters.NumberOfSamples = static_cast<Index>(ids.size() / 40);
+      const std::string what = std::string(mode == asmcore::SimplifyMode::Paper ? "paper" : "default") +
+        (listed ? ", listed ids" : ", identity");
+      const asmcore::SimplifyResult reference =
+        asmcore::Simplify(widened.data(), ids, nullptr, parameters);
+      const asmcore::SimplifyResult r =
+        asmcore::Simplify(floats.data(), ids, nullptr, parameters, UnevenTwoThreads());
+      ASSERT_EQ(r.Samples.size(), static_cast<std::size_t>(parameters.NumberOfSamples)) << what;
+      ASSERT_EQ(r.Samples.size(), reference.Samples.size()) << what;
+      ASSERT_EQ(r.Members, reference.Members) << what;
+      EXPECT_EQ(r.CellSize, reference.CellSize) << what;
+      EXPECT_GT(r.NumberOfKeyPoints, 0) << what;
+      EXPECT_EQ(r.NumberOfKeyPoints, reference.NumberOfKeyPoints) << what;
+      for (std::size_t s = 0; s < r.Samples.size(); ++s)
+      {
+        const asmcore::Sample& a = r.Samples[s];
+        const asmcore::Sample& b = reference.Samples[s];
+        ASSERT_TRUE(std::equal(a.Position, a.Position + 3, b.Position)) << what << ", sample " << s;
+        ASSERT_TRUE(std::equal(a.Normal, a.Normal + 3, b.Normal)) << what << ", sample " << s;
+        ASSERT_EQ(a.Representative, b.Representative) << what << ", sample " << s;
+        ASSERT_EQ(a.ClusterSize, b.ClusterSize) << what << ", sample " << s;
+        ASSERT_EQ(a.Key, b.Key) << what << ", sample " << s;
+      }
+    }
   }
 }
