@@ -32,7 +32,7 @@ void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighbor
   const Neighbors tree(pos, ringSamples);
   for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
   {
-    const double* p = xyz + 3 * grid.Order[i];
+    const double* p = xyz + 3 * grid.PointAt(i);
     const NearestPoint nearest = tree.Nearest(p);
     assign[i] = nearest.Id;
     distance2[i] = nearest.Id >= 0 ? SquaredDistance(p, pos + 3 * nearest.Id) : Infinity;
@@ -44,8 +44,8 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   const SampleSet& samples, PointArray<Index>& assign, PointArray<double>& distance2,
   const Execution& execution)
 {
-  assign.resize(grid.Order.size());
-  distance2.resize(grid.Order.size());
+  assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
+  distance2.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
@@ -64,7 +64,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.Order[i];
+        const double* p = xyz + 3 * grid.PointAt(i);
         Index best = -1;
         double bestD = Infinity;
         for (Index s = first; s < last; ++s)
@@ -122,7 +122,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       std::sort(candidates.begin(), candidates.end());
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.Order[i];
+        const double* p = xyz + 3 * grid.PointAt(i);
         Index best = assign[i];
         double bestD = distance2[i];
         for (const auto& candidate : candidates)
@@ -185,7 +185,7 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
       }
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.Order[i];
+        const double* p = xyz + 3 * grid.PointAt(i);
         const Index before = assign[i] >= 0 ? renumber[assign[i]] : -1;
         Index best = before;
         double bestD = distance2[i];

@@ -22,7 +22,7 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
   GroupBy(
     points, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, start, members,
     execution);
-  auto at = [xyz, &grid](Index slot) { return xyz + 3 * grid.Order[slot]; };
+  auto at = [xyz, &grid](Index slot) { return xyz + 3 * grid.PointAt(slot); };
   execution.Run(0, count, [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared distance to the centroid, slot)
     for (Index s = b; s < e; ++s)

@@ -26,11 +26,10 @@ bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborT
     {
       continue;
     }
-    const Index* points = grid.CellPoints(n);
-    const Index size = grid.CellSizeOf(n);
-    for (Index i = 0; i < size; ++i)
+    const Index end = grid.CellStart[n + 1];
+    for (Index slot = grid.CellStart[n]; slot < end; ++slot)
     {
-      const double* x = xyz + 3 * points[i];
+      const double* x = xyz + 3 * grid.PointAt(slot);
       const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
       if (dx * dx + dy * dy + dz * dz > r2)
       {
@@ -64,11 +63,11 @@ bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighbor
     {
       continue;
     }
-    for (Index i = 0; i < grid.CellSizeOf(nb); ++i)
+    for (Index slot = grid.CellStart[nb]; slot < grid.CellStart[nb + 1]; ++slot)
     {
-      const double* x = xyz + 3 * grid.CellPoints(nb)[i];
+      const double* x = xyz + 3 * grid.PointAt(slot);
       const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
-      if (grid.CellPoints(nb)[i] != id && dx * dx + dy * dy + dz * dz <= r * r)
+      if (grid.PointAt(slot) != id && dx * dx + dy * dy + dz * dz <= r * r)
       {
         mean[0] += dx;
         mean[1] += dy;
@@ -88,10 +87,10 @@ bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighbor
 
 std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
-  const FeatureKeyOptions& options, LocalPoints& q)
+  const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints)
 {
   std::vector<FeatureKey> keys;
-  const Index* points = grid.CellPoints(c);
+  const Index* points = grid.CellPointIds(c, cellPoints);
   const Index n = grid.CellSizeOf(c);
   if (n < 3)
   {

@@ -53,10 +53,11 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 };
 
 /// The key points of cell c, ordered by decreasing prominence (ties: point
-/// id). `q` is scratch space (the cell's points in its PCA frame).
+/// id). `q` and `cellPoints` are scratch space (the cell's points in its PCA
+/// frame; its point ids when the grid is in slot order).
 VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(const double* xyz,
   const CellGrid& grid, const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
-  const FeatureKeyOptions& options, LocalPoints& q);
+  const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints);
 
 /// A tip alone in a cell too sparse for a frame: whether input point `id` of
 /// cell c is the extreme (IsLocalExtreme) along the direction away from the

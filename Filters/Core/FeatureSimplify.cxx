@@ -62,7 +62,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
         {
           continue;
         }
-        const double* x = xyz + 3 * grid.Order[i];
+        const double* x = xyz + 3 * grid.PointAt(i);
         const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
           (x[2] - p[2]) * (x[2] - p[2]);
         if (d < bestD)
@@ -187,14 +187,12 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     }
   });
   const double* P = cellOrdered.get(); // released before the output
+  // The same cells over the copy, in slot order.
   CellGrid grid;
   grid.Spec = original.Spec;
   grid.CellStart = original.CellStart;
   grid.CellKey = original.CellKey;
-  grid.Order.resize(static_cast<std::size_t>(total));
-  execution.Run(0, total, [&](Index b, Index e) {
-    std::iota(grid.Order.begin() + b, grid.Order.begin() + e, b);
-  });
+  grid.SlotOrder = true; // (no identity list: 8 bytes per point less)
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
@@ -208,9 +206,10 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // 2. Per-cell analysis: PCA frame and key points.
   std::vector<CellFrame> frames(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
+    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
-      frames[c] = ComputeCellFrame(P, grid.CellPoints(c), grid.CellSizeOf(c));
+      frames[c] = ComputeCellFrame(P, grid.CellPointIds(c, cellPoints), grid.CellSizeOf(c));
     }
   });
   FeatureKeyOptions keyOptions;
@@ -228,9 +227,10 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   std::vector<std::vector<FeatureKey>> keys(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     LocalPoints q;
+    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
-      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q);
+      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q, cellPoints);
     }
   });
   if (abort(0.4))
@@ -270,6 +270,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   execution.Run(0, cells, [&](Index b, Index e) {
     CellScratch scratch;
     std::vector<Index> exclude;
+    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c];
@@ -288,7 +289,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         info[first + k].KeyError = key.Error;
         exclude.push_back(key.Point);
       }
-      RelaxCell(P, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
+      RelaxCell(P, grid.CellPointIds(c, cellPoints), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
         budget[c], parameters.LloydIterations, samples, scratch);
     }
   });
@@ -356,10 +357,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     }
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
-  // The identity order and the distances are done with: released before
-  // the members are laid out (the peak memory of a run).
+  // The distances are done with: released before the members are laid out.
   PointArray<double>().swap(distance2);
-  PointArray<Index>().swap(grid.Order);
   // The members of each sample as slots of the cell-ordered copy (in slot
   // order) while the samples are laid out: their coordinates are read from
   // it, where a cluster's points are near each other in memory, instead of

@@ -89,10 +89,32 @@ struct VTKASMFILTERS_EXPORT CellGrid
   PointArray<Index> Order;           ///< point ids sorted by (cell key, id)
   std::vector<Index> CellStart;      ///< cell c holds Order[CellStart[c], CellStart[c+1])
   std::vector<std::uint64_t> CellKey; ///< key of each non-empty cell, ascending
+  /// True when the points were copied in cell order (the default mode): slot
+  /// i holds point i, and Order is empty (8 bytes per point less).
+  bool SlotOrder = false;
 
   Index NumberOfCells() const { return static_cast<Index>(this->CellKey.size()); }
+  Index NumberOfPoints() const { return this->CellStart.empty() ? 0 : this->CellStart.back(); }
   Index CellSizeOf(Index c) const { return this->CellStart[c + 1] - this->CellStart[c]; }
+  /// The point in slot i (Order[i], or i in slot order).
+  Index PointAt(Index i) const { return this->SlotOrder ? i : this->Order[i]; }
+  /// The points of cell c (not in slot order: see CellPointIds).
   const Index* CellPoints(Index c) const { return this->Order.data() + this->CellStart[c]; }
+  /// The points of cell c in either order; in slot order they are written
+  /// into `scratch`.
+  const Index* CellPointIds(Index c, std::vector<Index>& scratch) const
+  {
+    if (!this->SlotOrder)
+    {
+      return this->CellPoints(c);
+    }
+    scratch.resize(static_cast<std::size_t>(this->CellSizeOf(c)));
+    for (std::size_t k = 0; k < scratch.size(); ++k)
+    {
+      scratch[k] = this->CellStart[c] + static_cast<Index>(k);
+    }
+    return scratch.data();
+  }
 };
 
 /// Hash the points into the grid `spec` (deterministic: ties by point id).

@@ -135,7 +135,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     for (Index m = start[k]; m < start[k + 1]; ++m)
     {
       const Index slot = members[m];
-      const double* p = xyz + 3 * grid.Order[slot];
+      const double* p = xyz + 3 * grid.PointAt(slot);
       const Index* ring = neighbors.Of(CellOfSlot(grid, slot));
       double best = Infinity;
       Index heir = -1;
@@ -179,7 +179,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       break;
     }
-    const double* p = xyz + 3 * grid.Order[i];
+    const double* p = xyz + 3 * grid.PointAt(i);
     const Index cell = CellOfSlot(grid, i);
     const Index* ring = neighbors.Of(cell);
     bool separate = true;
@@ -187,7 +187,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
       {
-        separate = SquaredDistance(p, xyz + 3 * grid.Order[gaps[g]]) > distance2[i];
+        separate = SquaredDistance(p, xyz + 3 * grid.PointAt(gaps[g])) > distance2[i];
       }
     }
     if (separate)
@@ -282,7 +282,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       {
         blocked[t] = 1;
       }
-      std::copy(xyz + 3 * grid.Order[g], xyz + 3 * grid.Order[g] + 3, samples.Position.data() + 3 * s);
+      std::copy(xyz + 3 * grid.PointAt(g), xyz + 3 * grid.PointAt(g) + 3, samples.Position.data() + 3 * s);
       owner[s] = CellOfSlot(grid, g);
       movedSamples.push_back(s);
       wasMoved[s] = 1;

@@ -193,7 +193,7 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
         const Index s = assign[i] - firstSample;
         if (s >= 0 && s < owned)
         {
-          const double* p = xyz + 3 * grid.Order[i];
+          const double* p = xyz + 3 * grid.PointAt(i);
           ++count[s];
           for (int a = 0; a < 3; ++a)
           {
