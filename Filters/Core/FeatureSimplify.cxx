@@ -15,6 +15,7 @@
 #include "SnappedHoles.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -28,6 +29,49 @@ int CrossIterations(const SimplifyParameters& p)
 {
   return std::max(0, std::min(MaxCrossCellIterations, p.CrossCellIterations));
 }
+
+// The input point id of each slot of the cell-ordered copy (the grid's
+// order), held in 32 bits when every id fits: 4 bytes per point less while
+// the passes run.
+class SlotIds
+{
+public:
+  SlotIds(PointArray<Index>& order, const Execution& execution)
+  {
+    const auto n = static_cast<Index>(order.size());
+    this->Narrow.resize(order.size());
+    std::atomic<bool> fits{ true };
+    execution.Run(0, n, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        const Index id = order[i];
+        if (id < 0 || id > static_cast<Index>(std::numeric_limits<std::uint32_t>::max()))
+        {
+          fits.store(false, std::memory_order_relaxed);
+          return;
+        }
+        this->Narrow[i] = static_cast<std::uint32_t>(id);
+      }
+    });
+    if (fits.load())
+    {
+      PointArray<Index>().swap(order);
+    }
+    else
+    {
+      PointArray<std::uint32_t>().swap(this->Narrow);
+      this->Wide.swap(order);
+    }
+  }
+  Index operator[](Index slot) const
+  {
+    return this->Wide.empty() ? static_cast<Index>(this->Narrow[slot]) : this->Wide[slot];
+  }
+
+private:
+  PointArray<std::uint32_t> Narrow;
+  PointArray<Index> Wide;
+};
 
 // Per-sample facts besides the position.
 struct SampleInfo
@@ -167,7 +211,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   };
 
   // 1. Grid (given in distributed runs).
-  const CellGrid original = BuildRunGrid(xyz, ids, parameters, target, execution);
+  CellGrid original = BuildRunGrid(xyz, ids, parameters, target, execution);
   if (abort(0.1))
   {
     return result;
@@ -187,12 +231,13 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     }
   });
   const double* P = cellOrdered.get(); // released before the output
-  // The same cells over the copy, in slot order.
+  // The same cells over the copy, in slot order, and each slot's point id.
   CellGrid grid;
   grid.Spec = original.Spec;
-  grid.CellStart = original.CellStart;
-  grid.CellKey = original.CellKey;
+  grid.CellStart.swap(original.CellStart);
+  grid.CellKey.swap(original.CellKey);
   grid.SlotOrder = true; // (no identity list: 8 bytes per point less)
+  const SlotIds idOf(original.Order, execution);
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
@@ -414,7 +459,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         const double* y = nearest < 0 ? nullptr : P + 3 * nearest;
         if (NearlyEqual(d, bestD)
             ? !y || PositionBefore(x, y) ||
-              (!PositionBefore(y, x) && original.Order[first[m]] < original.Order[nearest])
+              (!PositionBefore(y, x) && idOf[first[m]] < idOf[nearest])
             : d < bestD)
         {
           bestD = d;
@@ -423,7 +468,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         if (normals)
         {
           Eigen::Vector3d v;
-          normals.Get(original.Order[first[m]], v.data());
+          normals.Get(idOf[first[m]], v.data());
           if (v.allFinite())
           {
             normalSum += v;
@@ -432,14 +477,14 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
       }
       if (nearest < 0)
       {
-        nearest = original.CellStart[info[s].Owner]; // no member could be found
+        nearest = grid.CellStart[info[s].Owner]; // no member could be found
       }
       const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
         !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
       // A key sample placed on its extreme point stands for that point, even
       // when the point joined another sample's cluster (a tie with a sample
       // at the same position): its position is exactly that input point.
-      out.Representative = original.Order[samples.Fixed[s] && parameters.ExtremeKeyPoints &&
+      out.Representative = idOf[samples.Fixed[s] && parameters.ExtremeKeyPoints &&
             info[s].KeyPoint >= 0
           ? info[s].KeyPoint
           : nearest];
@@ -478,7 +523,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   execution.Run(0, static_cast<Index>(result.Members.size()), [&](Index b, Index e) {
     for (Index j = b; j < e; ++j)
     {
-      result.Members[j] = original.Order[result.Members[j]];
+      result.Members[j] = idOf[result.Members[j]];
     }
   });
   cellOrdered.reset();
