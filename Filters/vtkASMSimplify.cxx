@@ -119,11 +119,11 @@ int vtkASMSimplify::RequestData(
   std::unique_ptr<double[]> coordinateCopy;
   asmcore::PointIds idList; // (empty when every point is valid: ids is the identity)
   asmcore::IdView ids;
-  // A float cloud is read in place (the default mode reads it once, into its
-  // cell-ordered copy; the paper mode widens it in its core), except where a
-  // double copy serves twice (the paper mode's curvature) or is sent on (MPI).
-  const bool floatsInPlace =
-    !distributed && !(this->Mode == PAPER && this->GenerateCurvature);
+  // The default mode reads a float cloud in place, once, into its
+  // cell-ordered copy (24 bytes per point less than a double copy); the
+  // paper mode reads the points in place throughout, as doubles (the copy,
+  // with its huge-page hint), and MPI runs send doubles on.
+  const bool floatsInPlace = !distributed && this->Mode != PAPER;
   asmcore::Coordinates xyz = numberOfPoints > 0
     ? asmvtk::PrepareCoordinates(
         input->GetPoints(), coordinateCopy, idList, ids, threads, floatsInPlace)
