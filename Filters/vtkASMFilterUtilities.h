@@ -288,7 +288,7 @@ inline void AddFieldValue(vtkFieldData* fd, const char* name, double value)
 /// the positions `queries` (n x 3) from the k nearest points of the original
 /// cloud (xyz, ids, tree), signs following `normals` (n x 3, may be null).
 /// Returns false if aborted.
-inline bool AddCurvatureArrays(vtkPointData* pd, const double* xyz,
+inline bool AddCurvatureArrays(vtkPointData* pd, asmcore::Coordinates xyz,
   asmcore::IdView ids, const asmcore::Neighbors& tree, const double* queries,
   vtkIdType n, const double* normals, int k, const asmcore::Execution& execution)
 {

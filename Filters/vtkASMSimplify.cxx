@@ -306,6 +306,12 @@ int vtkASMSimplify::RequestData(
     ids = asmcore::IdView();
     xyz = asmcore::Coordinates();
   }
+  else if (auto* floats = distributed ? nullptr : vtkFloatArray::SafeDownCast(input->GetPoints()->GetData()))
+  {
+    // The curvature reads a float cloud in place (its k-d tree holds a copy).
+    coordinateCopy.reset();
+    xyz = floats->GetPointer(0);
+  }
 
   // Points and one vertex cell each.
   vtkNew<vtkPoints> points;
@@ -394,12 +400,8 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
-    // (Floats read in place so far are widened now, after the core's peak.)
-    const double* points = xyz.Doubles
-      ? xyz.Doubles
-      : asmvtk::TuplesAsDoubles(input->GetPoints()->GetData(), coordinateCopy);
-    const asmcore::Neighbors tree(points, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
-    if (!asmvtk::AddCurvatureArrays(outPD, points, ids, tree, positions.data(), count,
+    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
+    if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95, threads)))
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");

@@ -122,7 +122,7 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   return estimate;
 }
 
-std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, IdView ids,
+std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
   const Neighbors& tree, const double* queries, Index nQueries, const double* orientNormals, int k,
   const Execution& exec)
 {
@@ -142,7 +142,9 @@ std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, IdView ids,
   {
     for (Index id : ids)
     {
-      centroid += Eigen::Vector3d(xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]);
+      Eigen::Vector3d p;
+      xyz.Get(id, p.data());
+      centroid += p;
     }
     centroid /= static_cast<double>(ids.size());
   }
@@ -150,6 +152,10 @@ std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, IdView ids,
   auto body = [&](Index begin, Index end) {
     std::vector<Index> neighbors; // reused by the queries of this range
     std::vector<double> sqDist;
+    // Float coordinates: each query's neighbours widened into a local copy
+    // (the same numbers in the same order as a double copy of the cloud).
+    std::vector<double> local;
+    std::vector<Index> localIds;
     for (Index i = begin; i < end; ++i)
     {
       const double* q = queries + 3 * i;
@@ -160,8 +166,22 @@ std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz, IdView ids,
       {
         away[a] = q[a] - centroid[a];
       }
-      estimates[static_cast<std::size_t>(i)] = EstimateCurvatureAt(
-        xyz, neighbors.data(), static_cast<Index>(neighbors.size()), q, orient);
+      const auto count = static_cast<Index>(neighbors.size());
+      if (xyz.Doubles)
+      {
+        estimates[static_cast<std::size_t>(i)] =
+          EstimateCurvatureAt(xyz.Doubles, neighbors.data(), count, q, orient);
+        continue;
+      }
+      local.resize(static_cast<std::size_t>(3 * count));
+      localIds.resize(static_cast<std::size_t>(count));
+      for (Index j = 0; j < count; ++j)
+      {
+        xyz.Get(neighbors[j], local.data() + 3 * j);
+        localIds[j] = j;
+      }
+      estimates[static_cast<std::size_t>(i)] =
+        EstimateCurvatureAt(local.data(), localIds.data(), count, q, orient);
     }
   };
 

@@ -79,7 +79,7 @@ VTKASMFILTERS_EXPORT CurvatureEstimate EstimateCurvatureAt(const double* xyz,
 /// in 20 batches; if exec.Report asks to abort, returns an empty vector.
 /// A non-finite query, or an empty tree, gives a NaN estimate.
 /// Cost: O(nQueries (log N + k log k + k)) after the tree.
-VTKASMFILTERS_EXPORT std::vector<CurvatureEstimate> EstimateCurvature(const double* xyz,
+VTKASMFILTERS_EXPORT std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz,
   IdView ids, const Neighbors& tree, const double* queries, Index nQueries,
   const double* orientNormals, int k, const Execution& exec);
 } // namespace asmcore

@@ -87,14 +87,14 @@ public:
   /// An empty tree: every query returns nothing.
   Neighbors() = default;
   /// Same as Build(xyz, ids, execution).
-  Neighbors(const double* xyz, IdView ids, const Execution& execution = {});
+  Neighbors(Coordinates xyz, IdView ids, const Execution& execution = {});
 
   /// (Re)build the tree over the points xyz[3*id], id in ids, which must be
   /// finite (see FinitePointIds). Ids need not be sorted or contiguous;
   /// listing an id twice makes two (coincident) entries. The tree is built
   /// level by level, the nodes of a level in parallel (`execution`); it is
   /// the same whatever the thread count.
-  void Build(const double* xyz, IdView ids, const Execution& execution = {});
+  void Build(Coordinates xyz, IdView ids, const Execution& execution = {});
 
   /// Number of points in the tree.
   Index Size() const { return static_cast<Index>(this->Points.size()); }

@@ -15,7 +15,7 @@
 
 namespace asmcore
 {
-Neighbors::Neighbors(const double* xyz, IdView ids, const Execution& execution)
+Neighbors::Neighbors(Coordinates xyz, IdView ids, const Execution& execution)
 {
   this->Build(xyz, ids, execution);
 }
@@ -244,7 +244,7 @@ struct Neighbors::Scratch
   std::vector<Entry> Spare;         // the range, bucket by bucket, before it is copied back
 };
 
-void Neighbors::Build(const double* xyz, IdView ids, const Execution& execution)
+void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
 {
   this->Points.clear();
   this->Nodes.clear();
@@ -281,10 +281,17 @@ void Neighbors::Build(const double* xyz, IdView ids, const Execution& execution)
   {
     buckets.Reset(plan.Buckets());
     GroupBy(
-      n, plan.Buckets(), [&](Index i) { return plan.BucketOf(xyz + 3 * ids[i]); },
+      n, plan.Buckets(),
       [&](Index i) {
-        const double* p = xyz + 3 * ids[i];
-        return Entry{ { p[0], p[1], p[2] }, ids[i] };
+        double p[3];
+        xyz.Get(ids[i], p);
+        return plan.BucketOf(p);
+      },
+      [&](Index i) {
+        Entry entry;
+        xyz.Get(ids[i], entry.P);
+        entry.Id = ids[i];
+        return entry;
       },
       buckets.Start, this->Points, execution);
   }
@@ -294,8 +301,8 @@ void Neighbors::Build(const double* xyz, IdView ids, const Execution& execution)
     execution.Run(0, n, [&](Index b, Index e) {
       for (Index i = b; i < e; ++i)
       {
-        const double* p = xyz + 3 * ids[i];
-        this->Points[i] = Entry{ { p[0], p[1], p[2] }, ids[i] };
+        xyz.Get(ids[i], this->Points[i].P);
+        this->Points[i].Id = ids[i];
       }
     });
   }

@@ -6,6 +6,7 @@
 // the sample nearest an unclaimed point (the cells' rings first).
 #include "Core/CellNeighbors.h"
 #include "Core/CellSize.h"
+#include "Core/Curvature.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Assignment.h"
@@ -668,4 +669,29 @@ TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)
       }
     }
   }
+  // The curvature's k-d tree and estimates read floats in place too.
+  const asmcore::IdView ids = asmcore::IdView::Identity(all.size());
+  const asmcore::Neighbors fromFloats(floats.data(), ids, UnevenTwoThreads());
+  const asmcore::Neighbors fromDoubles(widened.data(), ids);
+  std::vector<double> queries;
+  for (std::size_t i = 0; i < widened.size(); i += 3 * 997)
+  {
+    queries.insert(queries.end(), { widened[i] + 1e-3, widened[i + 1], widened[i + 2] });
+  }
+  const auto nq = static_cast<Index>(queries.size() / 3);
+  const auto a = asmcore::EstimateCurvature(floats.data(), ids, fromFloats, queries.data(), nq,
+    nullptr, 0, UnevenTwoThreads());
+  const auto b = asmcore::EstimateCurvature(widened.data(), ids, fromDoubles, queries.data(), nq,
+    nullptr, 0, {});
+  ASSERT_EQ(a.size(), static_cast<std::size_t>(nq));
+  ASSERT_EQ(b.size(), a.size());
+  Index fits = 0;
+  for (std::size_t q = 0; q < a.size(); ++q)
+  {
+    ASSERT_EQ(a[q].MeanCurvature, b[q].MeanCurvature) << "query " << q;
+    ASSERT_EQ(a[q].SurfaceVariation, b[q].SurfaceVariation) << "query " << q;
+    ASSERT_TRUE(std::equal(a[q].Normal, a[q].Normal + 3, b[q].Normal)) << "query " << q;
+    fits += a[q].QuadricFit ? 1 : 0;
+  }
+  EXPECT_GT(fits, nq / 2);
 }
