@@ -164,6 +164,14 @@ int vtkASMSimplify::RequestData(
     target = valid;
   }
 
+  if (this->Mode != PAPER && target > static_cast<vtkIdType>(std::numeric_limits<asmcore::SampleId>::max()))
+  {
+    vtkErrorMacro(<< "The feature-preserving mode keeps at most "
+                  << std::numeric_limits<asmcore::SampleId>::max() << " output points (asked: "
+                  << target << "); use the paper mode (Mode = PAPER) or a smaller target.");
+    return 1;
+  }
+
   asmcore::SimplifyParameters parameters;
   parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
                                         : asmcore::SimplifyMode::FeaturePreserving;

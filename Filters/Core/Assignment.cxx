@@ -16,7 +16,7 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 /// AssignToSamples for the points of a cell that owns many samples: a k-d
 /// tree of the ring's samples (ties: lower index, as the brute-force search).
 void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, Index c, PointArray<Index>& assign, PointArray<double>& distance2,
+  const SampleSet& samples, Index c, PointArray<SampleId>& assign, PointArray<double>& distance2,
   std::vector<Index>& ringSamples)
 {
   ringSamples.clear();
@@ -41,7 +41,7 @@ void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighbor
 } // namespace
 
 void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, PointArray<Index>& assign, PointArray<double>& distance2,
+  const SampleSet& samples, PointArray<SampleId>& assign, PointArray<double>& distance2,
   const Execution& execution)
 {
   assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
@@ -148,7 +148,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
 
 void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
-  PointArray<Index>& assign, PointArray<double>& distance2, const Execution& execution)
+  PointArray<SampleId>& assign, PointArray<double>& distance2, const Execution& execution)
 {
   const Index count = samples.Size();
   const Index cells = grid.NumberOfCells();

@@ -19,7 +19,7 @@ namespace asmcore
 /// cell or a neighbouring one (ties: lower sample index), and the squared
 /// distance. -1 / infinity when none of those cells owns a sample.
 VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, const SampleSet& samples, PointArray<Index>& assign,
+  const CellNeighborTable& neighbors, const SampleSet& samples, PointArray<SampleId>& assign,
   PointArray<double>& distance2, const Execution& execution);
 
 /// AssignToSamples after a few samples moved (FillHoles): `assign` and
@@ -33,7 +33,7 @@ VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& gri
 /// than LargeCellBudget samples are searched again (with a k-d tree).
 VTKASMFILTERS_EXPORT void UpdateAssignment(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,
-  const std::vector<char>& moved, PointArray<Index>& assign, PointArray<double>& distance2,
+  const std::vector<char>& moved, PointArray<SampleId>& assign, PointArray<double>& distance2,
   const Execution& execution);
 } // namespace asmcore
 

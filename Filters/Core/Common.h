@@ -28,6 +28,9 @@ namespace asmcore
 {
 /// Point and cell index type: 64-bit end to end.
 using Index = std::int64_t;
+/// A sample's number in the per-point assignments of the default mode: 32
+/// bits (4 bytes per point less), so at most 2^31 - 1 samples there.
+using SampleId = std::int32_t;
 
 /// Runs body(b, e) over sub-ranges covering [begin, end); may run them
 /// concurrently. Results must not depend on how the range is cut.

@@ -10,7 +10,7 @@
 namespace asmcore
 {
 void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  SampleSet& samples, PointArray<Index>& assign, PointArray<double>& distance2,
+  SampleSet& samples, PointArray<SampleId>& assign, PointArray<double>& distance2,
   const Execution& execution)
 {
   AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);

@@ -31,7 +31,7 @@ constexpr int CoveringCandidates = 16;
 /// `samples`; `assign` and `distance2` are left holding the assignment the
 /// round started from (AssignToSamples).
 VTKASMFILTERS_EXPORT void RefineCovering(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, SampleSet& samples, PointArray<Index>& assign,
+  const CellNeighborTable& neighbors, SampleSet& samples, PointArray<SampleId>& assign,
   PointArray<double>& distance2, const Execution& execution);
 } // namespace asmcore
 

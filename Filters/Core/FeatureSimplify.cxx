@@ -84,7 +84,7 @@ struct SampleInfo
 // Every sample gets at least one member when its ring has a point to spare:
 // the nearest point of a cluster with two or more members moves to it.
 void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<Index>& assign,
+  const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
   PointArray<double>& distance2, std::vector<Index>& count)
 {
   for (Index s = 0; s < samples.Size(); ++s)
@@ -133,7 +133,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
 // with fewer samples than cells) join the nearest sample anywhere, so that
 // the clusters stay a partition of the points.
 void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count,
-  PointArray<Index>& assign, const Execution& execution)
+  PointArray<SampleId>& assign, const Execution& execution)
 {
   if (count == 0 || std::find(assign.begin(), assign.end(), Index(-1)) == assign.end())
   {
@@ -242,7 +242,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
   result.NumberOfCells = cells;
-  const CellNeighborTable neighbors = BuildCellNeighbors(grid, execution);
+  CellNeighborTable neighbors = BuildCellNeighbors(grid, execution);
   if (abort(0.2))
   {
     return result;
@@ -309,6 +309,11 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     samples.Start[c + 1] = samples.Start[c] + budget[c];
   }
   const Index count = samples.Start[cells];
+  if (count > static_cast<Index>(std::numeric_limits<SampleId>::max()))
+  {
+    result.Aborted = true; // (SampleId: more samples than the assignments can number)
+    return result;
+  }
   samples.Position.assign(static_cast<std::size_t>(3 * count), 0.0);
   samples.Fixed.assign(static_cast<std::size_t>(count), 0);
   std::vector<SampleInfo> info(static_cast<std::size_t>(count));
@@ -338,13 +343,16 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         budget[c], parameters.LloydIterations, samples, scratch);
     }
   });
+  // The key points are placed: released (the budgets are in samples.Start).
+  std::vector<std::vector<FeatureKey>>().swap(keys);
+  std::vector<Index>().swap(budget);
   if (abort(0.6))
   {
     return result;
   }
 
   // 5. Cross-cell refinement.
-  PointArray<Index> assign;
+  PointArray<SampleId> assign;
   PointArray<double> distance2;
   for (int it = 0; it < CrossIterations(parameters); ++it)
   {
@@ -402,6 +410,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     }
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
+  // The last step that looks across cells: the table is released.
+  std::vector<Index>().swap(neighbors.Cells);
   // The distances are done with: released before the members are laid out.
   PointArray<double>().swap(distance2);
   // The members of each sample as slots of the cell-ordered copy (in slot
@@ -412,7 +422,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   GroupBy(
     total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; },
     memberStart, result.Members, execution);
-  PointArray<Index>().swap(assign);
+  PointArray<SampleId>().swap(assign);
   if (abort(0.9))
   {
     return result;

@@ -63,6 +63,7 @@ VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 /// Simplify in the feature-preserving mode (see above); same contract as
 /// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever
 /// the thread count, Members partitioning the input points among the samples.
+/// At most 2^31 - 1 samples (SampleId); more give an empty, Aborted result.
 VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(Coordinates xyz,
   IdView ids, NormalField normals, const SimplifyParameters& parameters,
   const Execution& execution = {});

@@ -35,7 +35,7 @@ Index CellOfSample(const SampleSet& samples, Index s)
 // so that the smallest spreads are the largest values. A maximum does not
 // depend on the order of its terms: the points are cut in blocks that raise
 // shared per-sample maxima atomically.
-std::vector<double> NegatedSpreads(const PointArray<Index>& assign, const PointArray<double>& distance2,
+std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, const PointArray<double>& distance2,
   const SampleSet& samples, const Execution& execution)
 {
   const Index count = samples.Size();
@@ -75,7 +75,7 @@ std::vector<double> NegatedSpreads(const PointArray<Index>& assign, const PointA
 } // namespace
 
 Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const PointArray<Index>& assign, const PointArray<double>& distance2, Index maxMoves,
+  const PointArray<SampleId>& assign, const PointArray<double>& distance2, Index maxMoves,
   SampleSet& samples, std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
   Index firstBatch)
 {

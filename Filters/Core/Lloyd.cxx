@@ -132,7 +132,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
 }
 
 void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const PointArray<Index>& assign, SampleSet& samples, const Execution& execution)
+  const PointArray<SampleId>& assign, SampleSet& samples, const Execution& execution)
 {
   // The points assigned to a cell's samples lie in its ring (the assignment
   // searches rings, which are symmetric). A chunk of cells scans the union

@@ -82,7 +82,7 @@ VTKASMFILTERS_EXPORT void RelaxCell(const double* xyz, const Index* points, Inde
 /// One Lloyd step across cell borders: every free sample moves to the
 /// centroid of the points assigned to it (unchanged when it has none).
 VTKASMFILTERS_EXPORT void MoveToCentroids(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, const PointArray<Index>& assign, SampleSet& samples,
+  const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, SampleSet& samples,
   const Execution& execution);
 
 } // namespace asmcore

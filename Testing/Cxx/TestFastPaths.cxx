@@ -514,7 +514,7 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
     }
     samples.Start[cell + 1] = samples.Start[cell] + n;
   }
-  asmcore::PointArray<Index> assign, check;
+  asmcore::PointArray<asmcore::SampleId> assign, check;
   asmcore::PointArray<double> distance2, checkDistance2;
   asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
   // Move every 17th sample onto a point of a cell 5 cells further, and

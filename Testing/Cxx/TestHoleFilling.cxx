@@ -136,7 +136,7 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
     }
     samples.Start[cell + 1] = samples.Start[cell] + n;
   }
-  asmcore::PointArray<Index> assign;
+  asmcore::PointArray<asmcore::SampleId> assign;
   asmcore::PointArray<double> distance2;
   asmcore::AssignToSamples(c.data(), grid, neighbors, samples, assign, distance2, {});
   const double holeBefore = *std::max_element(distance2.begin(), distance2.end());
