@@ -16,8 +16,7 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 /// AssignToSamples for the points of a cell that owns many samples: a k-d
 /// tree of the ring's samples (ties: lower index, as the brute-force search).
 void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, Index c, PointArray<SampleId>& assign, PointArray<double>& distance2,
-  std::vector<Index>& ringSamples)
+  const SampleSet& samples, Index c, PointArray<SampleId>& assign, std::vector<Index>& ringSamples)
 {
   ringSamples.clear();
   for (int k = 0; k < 27; ++k)
@@ -32,20 +31,16 @@ void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighbor
   const Neighbors tree(pos, ringSamples);
   for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
   {
-    const double* p = xyz + 3 * grid.PointAt(i);
-    const NearestPoint nearest = tree.Nearest(p);
-    assign[i] = nearest.Id;
-    distance2[i] = nearest.Id >= 0 ? SquaredDistance(p, pos + 3 * nearest.Id) : Infinity;
+    const NearestPoint nearest = tree.Nearest(xyz + 3 * grid.PointAt(i));
+    assign[i] = static_cast<SampleId>(nearest.Id);
   }
 }
 } // namespace
 
 void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, PointArray<SampleId>& assign, PointArray<double>& distance2,
-  const Execution& execution)
+  const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution)
 {
   assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
-  distance2.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
@@ -55,7 +50,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       const Index first = samples.Start[c], last = samples.Start[c + 1];
       if (last - first > LargeCellBudget)
       {
-        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, ringSamples);
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, ringSamples);
         continue;
       }
       // Pass 1: the nearest of the cell's own samples, and the farthest any
@@ -76,8 +71,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
             best = s;
           }
         }
-        assign[i] = best;
-        distance2[i] = bestD;
+        assign[i] = static_cast<SampleId>(best);
         reach = std::max(reach, bestD);
         for (int a = 0; a < 3; ++a)
         {
@@ -124,7 +118,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       {
         const double* p = xyz + 3 * grid.PointAt(i);
         Index best = assign[i];
-        double bestD = distance2[i];
+        double bestD = AssignedDistance2(xyz, grid, samples, assign, i); // (pass 1's value)
         for (const auto& candidate : candidates)
         {
           if (candidate.first > bestD)
@@ -139,8 +133,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
             best = s;
           }
         }
-        assign[i] = best;
-        distance2[i] = bestD;
+        assign[i] = static_cast<SampleId>(best);
       }
     }
   });
@@ -148,7 +141,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
 
 void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
-  PointArray<SampleId>& assign, PointArray<double>& distance2, const Execution& execution)
+  PointArray<SampleId>& assign, const Execution& execution)
 {
   const Index count = samples.Size();
   const Index cells = grid.NumberOfCells();
@@ -167,7 +160,7 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
       {
         // A cell owning many samples searches them with a k-d tree, as
         // AssignToSamples does (the same answers, in O(log) per point).
-        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, distance2, ringSamples);
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, ringSamples);
         continue;
       }
       const Index* ring = neighbors.Of(c);
@@ -188,7 +181,8 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
         const double* p = xyz + 3 * grid.PointAt(i);
         const Index before = assign[i] >= 0 ? renumber[assign[i]] : -1;
         Index best = before;
-        double bestD = distance2[i];
+        // (Its sample, if it stayed, is where it was: the same distance.)
+        double bestD = before < 0 ? Infinity : SquaredDistance(p, pos + 3 * before);
         auto consider = [&](Index s) {
           const double d = SquaredDistance(p, pos + 3 * s);
           if (d < bestD || (d == bestD && s < best))
@@ -219,8 +213,7 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
             consider(s);
           }
         }
-        assign[i] = best;
-        distance2[i] = bestD;
+        assign[i] = static_cast<SampleId>(best);
       }
     }
   });

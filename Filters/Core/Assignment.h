@@ -13,28 +13,42 @@
 
 #include "Lloyd.h"
 
+#include <limits>
+
 namespace asmcore
 {
 /// For every point (slot i of grid.Order): the nearest sample owned by its
-/// cell or a neighbouring one (ties: lower sample index), and the squared
-/// distance. -1 / infinity when none of those cells owns a sample.
+/// cell or a neighbouring one (ties: lower sample index); -1 when none of
+/// those cells owns a sample. The squared distance the search compared is
+/// AssignedDistance2 (recomputed where it is needed: no array of 8 bytes per
+/// point).
 VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, PointArray<SampleId>& assign,
-  PointArray<double>& distance2, const Execution& execution);
+  const Execution& execution);
 
-/// AssignToSamples after a few samples moved (FillHoles): `assign` and
-/// `distance2` hold the assignment before, to samples numbered as before
-/// (previous[new slot] = old slot, a permutation that keeps the order of the
-/// samples that did not move), and `moved` flags the samples (new slots)
-/// whose position or owner cell changed. Gives exactly what AssignToSamples
-/// gives (the nearest ring sample, ties: the lower index), but only the
-/// points whose sample moved are searched again; the others only compare
-/// with the moved samples of their ring. The points of a cell owning more
-/// than LargeCellBudget samples are searched again (with a k-d tree).
+/// The squared distance from the point in slot i to its sample (infinity
+/// without one), bit for bit the value the assignment compared, as long as
+/// that sample has not moved since.
+inline double AssignedDistance2(const double* xyz, const CellGrid& grid, const SampleSet& samples,
+  const PointArray<SampleId>& assign, Index i)
+{
+  return assign[i] < 0
+    ? std::numeric_limits<double>::infinity()
+    : SquaredDistance(xyz + 3 * grid.PointAt(i), samples.Position.data() + 3 * assign[i]);
+}
+
+/// AssignToSamples after a few samples moved (FillHoles): `assign` holds
+/// the assignment before, to samples numbered as before (previous[new slot]
+/// = old slot, a permutation that keeps the order of the samples that did
+/// not move), and `moved` flags the samples (new slots) whose position or
+/// owner cell changed. Gives exactly what AssignToSamples gives (the nearest
+/// ring sample, ties: the lower index), but only the points whose sample
+/// moved are searched again; the others only compare with the moved samples
+/// of their ring. The points of a cell owning more than LargeCellBudget
+/// samples are searched again (with a k-d tree).
 VTKASMFILTERS_EXPORT void UpdateAssignment(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,
-  const std::vector<char>& moved, PointArray<SampleId>& assign, PointArray<double>& distance2,
-  const Execution& execution);
+  const std::vector<char>& moved, PointArray<SampleId>& assign, const Execution& execution);
 } // namespace asmcore
 
 #endif

@@ -10,10 +10,9 @@
 namespace asmcore
 {
 void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  SampleSet& samples, PointArray<SampleId>& assign, PointArray<double>& distance2,
-  const Execution& execution)
+  SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution)
 {
-  AssignToSamples(xyz, grid, neighbors, samples, assign, distance2, execution);
+  AssignToSamples(xyz, grid, neighbors, samples, assign, execution);
   const Index count = samples.Size();
   const Index points = static_cast<Index>(assign.size());
   // The members (point slots) of every sample, in slot order.

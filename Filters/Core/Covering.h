@@ -28,11 +28,11 @@ namespace asmcore
 constexpr int CoveringCandidates = 16;
 
 /// One round of covering refinement (see above) of the free samples of
-/// `samples`; `assign` and `distance2` are left holding the assignment the
-/// round started from (AssignToSamples).
+/// `samples`; `assign` is left holding the assignment the round started from
+/// (AssignToSamples).
 VTKASMFILTERS_EXPORT void RefineCovering(const double* xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, SampleSet& samples, PointArray<SampleId>& assign,
-  PointArray<double>& distance2, const Execution& execution);
+  const Execution& execution);
 } // namespace asmcore
 
 #endif

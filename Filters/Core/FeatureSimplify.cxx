@@ -85,7 +85,7 @@ struct SampleInfo
 // the nearest point of a cluster with two or more members moves to it.
 void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
-  PointArray<double>& distance2, std::vector<Index>& count)
+  std::vector<Index>& count)
 {
   for (Index s = 0; s < samples.Size(); ++s)
   {
@@ -122,8 +122,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
       {
         --count[assign[best]];
       }
-      assign[best] = s;
-      distance2[best] = bestD;
+      assign[best] = static_cast<SampleId>(s);
       ++count[s];
     }
   }
@@ -352,11 +351,10 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   }
 
   // 5. Cross-cell refinement.
-  PointArray<SampleId> assign;
-  PointArray<double> distance2;
+  PointArray<SampleId> assign; // (the distances are recomputed: AssignedDistance2)
   for (int it = 0; it < CrossIterations(parameters); ++it)
   {
-    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    AssignToSamples(P, grid, neighbors, samples, assign, execution);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
     if (abort(0.6 + 0.2 * (it + 1) / CrossIterations(parameters)))
     {
@@ -365,12 +363,12 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   }
   for (int round = 0; parameters.FillHoles && round < parameters.HoleFillRounds; ++round)
   {
-    AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+    AssignToSamples(P, grid, neighbors, samples, assign, execution);
     std::vector<Index> order;
     const auto maxMoves = static_cast<Index>(
       std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
     std::vector<char> moved;
-    if (FillHoles(P, grid, neighbors, assign, distance2, maxMoves, samples, order, moved, execution) == 0)
+    if (FillHoles(P, grid, neighbors, assign, maxMoves, samples, order, moved, execution) == 0)
     {
       break;
     }
@@ -387,7 +385,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     });
     info.swap(regrouped);
     // One Lloyd step re-centres the moved samples and their neighbours.
-    UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, distance2, execution);
+    UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, execution);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
@@ -395,11 +393,11 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   const bool inputPoints = parameters.InputPointSamples || parameters.Snap;
   for (int round = 0; inputPoints && round < parameters.CoveringRounds; ++round)
   {
-    RefineCovering(P, grid, neighbors, samples, assign, distance2, execution);
+    RefineCovering(P, grid, neighbors, samples, assign, execution);
   }
 
   // Clusters: every point joins its nearest sample.
-  AssignToSamples(P, grid, neighbors, samples, assign, distance2, execution);
+  AssignToSamples(P, grid, neighbors, samples, assign, execution);
   JoinUnassignedPoints(P, samples, count, assign, execution);
   std::vector<Index> clusterSize(static_cast<std::size_t>(count), 0);
   for (Index s : assign)
@@ -409,19 +407,19 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
       ++clusterSize[s];
     }
   }
-  FillEmptyClusters(P, grid, neighbors, samples, info, assign, distance2, clusterSize);
+  FillEmptyClusters(P, grid, neighbors, samples, info, assign, clusterSize);
   // The last step that looks across cells: the table is released.
   std::vector<Index>().swap(neighbors.Cells);
-  // The distances are done with: released before the members are laid out.
-  PointArray<double>().swap(distance2);
   // The members of each sample as slots of the cell-ordered copy (in slot
   // order) while the samples are laid out: their coordinates are read from
   // it, where a cluster's points are near each other in memory, instead of
   // scattered over the input. They become input point ids at the end.
   std::vector<Index> memberStart;
+  // (The peak memory of a run: small per-block counts, an eighth of an
+  // Index per point, so at most two blocks at 5 %.)
   GroupBy(
     total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; },
-    memberStart, result.Members, execution);
+    memberStart, result.Members, execution, 8, 1 << 16, 0.125);
   PointArray<SampleId>().swap(assign);
   if (abort(0.9))
   {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "HoleFilling.h"
 
+#include "Assignment.h"
 #include "GroupBy.h"
 #include "Selection.h"
 
@@ -35,7 +36,8 @@ Index CellOfSample(const SampleSet& samples, Index s)
 // so that the smallest spreads are the largest values. A maximum does not
 // depend on the order of its terms: the points are cut in blocks that raise
 // shared per-sample maxima atomically.
-std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, const PointArray<double>& distance2,
+template <typename DistanceOf>
+std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, DistanceOf&& distance2,
   const SampleSet& samples, const Execution& execution)
 {
   const Index count = samples.Size();
@@ -55,9 +57,9 @@ std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, const Poi
       {
         continue;
       }
+      const double d = distance2(i);
       double current = spread[s].load(std::memory_order_relaxed);
-      while (distance2[i] > current &&
-        !spread[s].compare_exchange_weak(current, distance2[i], std::memory_order_relaxed))
+      while (d > current && !spread[s].compare_exchange_weak(current, d, std::memory_order_relaxed))
       {
       }
     }
@@ -75,7 +77,7 @@ std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, const Poi
 } // namespace
 
 Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const PointArray<SampleId>& assign, const PointArray<double>& distance2, Index maxMoves,
+  const PointArray<SampleId>& assign, Index maxMoves,
   SampleSet& samples, std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
   Index firstBatch)
 {
@@ -89,6 +91,9 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   {
     return 0;
   }
+  // Each point's squared distance to its sample, as the assignment compared
+  // it (read before any sample moves).
+  auto distance2 = [&](Index i) { return AssignedDistance2(xyz, grid, samples, assign, i); };
   // Candidates: the free samples with the most points per unit of spread
   // first (small clusters in dense areas), a few per move. The spread of a
   // sample is the largest squared distance of its members (infinite for
@@ -167,10 +172,11 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   // Gaps: the points farthest from every sample, one per gap (a point
   // within its own gap distance of a gap taken already, in its cell's ring,
   // belongs to that gap).
-  const std::vector<Index> far = LargestFinite(distance2,
+  const std::vector<Index> far = LargestFiniteOf(points, distance2,
     static_cast<Index>(std::min<double>(static_cast<double>(points), 20.0 * static_cast<double>(maxMoves))),
     execution);
   std::vector<Index> gaps;
+  std::vector<double> gapDistance2; // (of each gap, before the moves)
   std::vector<Index> head(static_cast<std::size_t>(cells), -1); // gaps per cell, chained
   std::vector<Index> chain;
   for (Index i : far)
@@ -180,6 +186,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       break;
     }
     const double* p = xyz + 3 * grid.PointAt(i);
+    const double d2 = distance2(i);
     const Index cell = CellOfSlot(grid, i);
     const Index* ring = neighbors.Of(cell);
     bool separate = true;
@@ -187,7 +194,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
       {
-        separate = SquaredDistance(p, xyz + 3 * grid.PointAt(gaps[g])) > distance2[i];
+        separate = SquaredDistance(p, xyz + 3 * grid.PointAt(gaps[g])) > d2;
       }
     }
     if (separate)
@@ -195,6 +202,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       chain.push_back(head[cell]);
       head[cell] = static_cast<Index>(gaps.size());
       gaps.push_back(i);
+      gapDistance2.push_back(d2);
     }
   }
   // Cheapest candidates into the largest gaps, while it pays.
@@ -239,8 +247,10 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
   Index next = 0;
   std::vector<Index> movedSamples;
   std::vector<char> wasMoved(static_cast<std::size_t>(count), 0);
-  for (Index g : gaps)
+  for (std::size_t gap = 0; gap < gaps.size(); ++gap)
   {
+    const Index g = gaps[gap];
+    const double limit = gapDistance2[gap];
     for (int tries = 0; tries < 8; ++tries)
     {
       while (next < candidateCount && blocked[candidates[next]])
@@ -260,7 +270,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
           {
             if (!blocked[candidates[j]])
             {
-              cost[j] = removalCost(j, distance2[g], heirsOf[j]);
+              cost[j] = removalCost(j, limit, heirsOf[j]);
               batchOf[j] = moves;
             }
           }
@@ -270,9 +280,9 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       }
       if (!isCurrent(k))
       {
-        cost[k] = removalCost(k, distance2[g], heirsOf[k]);
+        cost[k] = removalCost(k, limit, heirsOf[k]);
       }
-      if (!(cost[k] < distance2[g]))
+      if (!(cost[k] < limit))
       {
         continue;
       }

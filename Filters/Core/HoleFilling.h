@@ -28,8 +28,8 @@ namespace asmcore
 /// (1: one at a time, each at its turn, as a serial scan); the result does
 /// not depend on it.
 VTKASMFILTERS_EXPORT Index FillHoles(const double* xyz, const CellGrid& grid,
-  const CellNeighborTable& neighbors, const PointArray<SampleId>& assign,
-  const PointArray<double>& distance2, Index maxMoves, SampleSet& samples,
+  const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, Index maxMoves,
+  SampleSet& samples,
   std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
   Index firstBatch = 32);
 } // namespace asmcore
