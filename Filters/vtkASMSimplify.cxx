@@ -119,11 +119,10 @@ int vtkASMSimplify::RequestData(
   std::unique_ptr<double[]> coordinateCopy;
   asmcore::PointIds idList; // (empty when every point is valid: ids is the identity)
   asmcore::IdView ids;
-  // The default mode reads a float cloud in place, once, into its
-  // cell-ordered copy (24 bytes per point less than a double copy); the
-  // paper mode reads the points in place throughout, as doubles (the copy,
-  // with its huge-page hint), and MPI runs send doubles on.
-  const bool floatsInPlace = !distributed && this->Mode != PAPER;
+  // A float cloud is read in place, widened as it is read (the default
+  // mode into its cell-ordered copy, the paper mode cell by cell): no double
+  // copy of 24 bytes per point. MPI runs send doubles on.
+  const bool floatsInPlace = !distributed;
   asmcore::Coordinates xyz = numberOfPoints > 0
     ? asmvtk::PrepareCoordinates(
         input->GetPoints(), coordinateCopy, idList, ids, threads, floatsInPlace)

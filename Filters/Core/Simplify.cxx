@@ -37,6 +37,29 @@ struct Groups
   Index Size() const { return this->Members.Size(); }
 };
 
+// A cell's points gathered as doubles (floats widened exactly), in the
+// cell's order, with the local slots 0 ... n - 1 that index them: the
+// per-cell steps read them from here (cache-resident) instead of from the
+// scattered input, which needs no double copy of its own.
+struct CellCoordinates
+{
+  std::vector<double> Xyz;
+  std::vector<Index> Slots;
+
+  void Gather(Coordinates xyz, const Index* points, Index n)
+  {
+    this->Xyz.resize(static_cast<std::size_t>(3 * n));
+    for (Index i = 0; i < n; ++i)
+    {
+      xyz.Get(points[i], this->Xyz.data() + 3 * i);
+    }
+    for (auto k = static_cast<Index>(this->Slots.size()); k < n; ++k)
+    {
+      this->Slots.push_back(k);
+    }
+  }
+};
+
 // Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
 // the groups of points that become the cell's samples (appended to `groups`,
 // cleared first). `xyz` and `points` (the cell's input points) order the key
@@ -147,7 +170,7 @@ void CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget, st
 // nearest of all (any cell outside the block is farther); the other points,
 // and those of a block holding very many samples, are left at -1 in `owner`
 // for a global search.
-void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
+void NearestSamplesInRing(Coordinates xyz, const CellGrid& grid,
   const std::vector<Index>& sampleStart, const SimplifyResult& result,
   const std::vector<Index>& points, const std::vector<std::pair<Index, Index>>& runs,
   std::vector<Index>& owner, const Execution& execution)
@@ -185,10 +208,11 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
       }
       for (Index i = first; i < last; ++i)
       {
-        const double* p = xyz + 3 * points[i];
+        double p[3];
+        xyz.Get(points[i], p);
         if (i + 8 < n)
         {
-          Prefetch(xyz + 3 * points[i + 8]); // the points are scattered in memory
+          Prefetch(xyz.Address(points[i + 8])); // the points are scattered in memory
         }
         // Squared gaps to the neighbouring boxes along each axis: below
         // (offset -1), none (0), above (+1).
@@ -239,7 +263,7 @@ void NearestSamplesInRing(const double* xyz, const CellGrid& grid,
 // points are the slots [grid.CellStart[c], grid.CellStart[c + 1]) of the
 // members; its samples, [sampleStart[c], sampleStart[c + 1]), took the first
 // of them.
-void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
+void AttachUnclaimedPoints(Coordinates xyz, const CellGrid& grid,
   const std::vector<Index>& sampleStart, SimplifyResult& result, const std::vector<char>& haloSlot,
   const Execution& execution)
 {
@@ -312,7 +336,8 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
     execution.Run(0, static_cast<Index>(far.size()), [&](Index b, Index e) {
       for (Index i = b; i < e; ++i)
       {
-        const double* p = xyz + 3 * unclaimed[far[i]];
+        double p[3];
+        xyz.Get(unclaimed[far[i]], p);
         Index best = 0;
         double bestD = std::numeric_limits<double>::infinity();
         for (Index s = 0; s < samples; ++s)
@@ -343,7 +368,9 @@ void AttachUnclaimedPoints(const double* xyz, const CellGrid& grid,
     execution.Run(0, static_cast<Index>(far.size()), [&](Index b, Index e) {
       for (Index i = b; i < e; ++i)
       {
-        const NearestPoint nearest = tree.Nearest(xyz + 3 * unclaimed[far[i]]);
+        double p[3];
+        xyz.Get(unclaimed[far[i]], p);
+        const NearestPoint nearest = tree.Nearest(p);
         owner[far[i]] = nearest.Id >= 0 ? nearest.Id : 0;
       }
     });
@@ -496,7 +523,7 @@ void SummarizeKeyPoints(SimplifyResult& result)
 namespace
 {
 // The paper's pipeline (Simplify.h).
-SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
+SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
   const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
@@ -535,9 +562,11 @@ SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
   {
     frames.resize(static_cast<std::size_t>(cells));
     execution.Run(0, cells, [&](Index b, Index e) {
+      CellCoordinates local;
       for (Index c = b; c < e; ++c)
       {
-        frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+        local.Gather(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+        frames[c] = ComputeCellFrame(local.Xyz.data(), local.Slots.data(), grid.CellSizeOf(c));
       }
     });
   }
@@ -602,6 +631,7 @@ SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
     std::vector<Index> cellPoints;
+    CellCoordinates local;
     Groups groups;
     std::vector<char> grouped;
     for (Index c = b; c < e; ++c)
@@ -613,11 +643,16 @@ SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
       const Index n = grid.CellSizeOf(c);
       cellPoints.assign(result.Members.begin() + grid.CellStart[c],
         result.Members.begin() + grid.CellStart[c + 1]);
-      const Index* points = cellPoints.data();
-      const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(xyz, points, n);
-      KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
+      const Index* points = cellPoints.data(); // (input point ids)
+      // The geometry reads the cell's points from a local copy (doubles,
+      // in the same order): local slot i is point points[i].
+      local.Gather(xyz, points, n);
+      const double* cellXyz = local.Xyz.data();
+      const Index* slots = local.Slots.data();
+      const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(cellXyz, slots, n);
+      KeyClusters kc = FindCellKeyClusters(cellXyz, slots, n, frame, rule, q);
       CombineWithSampling(
-        q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), xyz, points, groups);
+        q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), cellXyz, slots, groups);
 
       Index memberCursor = grid.CellStart[c];
       Index sampleIndex = sampleStart[c];
@@ -631,8 +666,7 @@ SimplifyResult SimplifyPaper(const double* xyz, IdView ids, NormalField normals,
         const Index nearest = NearestMember(q, first, last, local);
         // A single point, or a snapped sample, is an input point exactly.
         const Eigen::Vector3d world = (parameters.Snap || last - first == 1)
-          ? Eigen::Vector3d(xyz[3 * points[nearest]], xyz[3 * points[nearest] + 1],
-              xyz[3 * points[nearest] + 2])
+          ? Eigen::Vector3d(cellXyz[3 * nearest], cellXyz[3 * nearest + 1], cellXyz[3 * nearest + 2])
           : Eigen::Vector3d(frame.Centroid + frame.Axes * local);
         Eigen::Vector3d normal = frame.Normal();
         Eigen::Vector3d reference = frame.Centroid - cloudCentroid;
@@ -735,24 +769,6 @@ SimplifyResult Simplify(Coordinates xyz, IdView ids, NormalField normals,
   {
     return SimplifyFeaturePreserving(xyz, ids, normals, parameters, execution);
   }
-  if (xyz.Doubles || ids.empty())
-  {
-    return SimplifyPaper(xyz.Doubles, ids, normals, parameters, execution);
-  }
-  // The paper mode reads the points in place, as doubles: floats are
-  // widened into a copy (up to the largest id).
-  Index last = static_cast<Index>(ids.size()) - 1;
-  for (std::size_t i = 0; !ids.IsIdentity() && i < ids.size(); ++i)
-  {
-    last = std::max(last, ids[i]);
-  }
-  PointArray<double> widened(static_cast<std::size_t>(3 * (last + 1)));
-  execution.Run(0, last + 1, [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
-    {
-      xyz.Get(i, widened.data() + 3 * i);
-    }
-  });
-  return SimplifyPaper(widened.data(), ids, normals, parameters, execution);
+  return SimplifyPaper(xyz, ids, normals, parameters, execution);
 }
 } // namespace asmcore
