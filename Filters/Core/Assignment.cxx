@@ -45,6 +45,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared gap to the box, sample)
     std::vector<Index> ringSamples;
+    std::vector<double> cellD2; // pass 1's squared distances of the cell's points
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c], last = samples.Start[c + 1];
@@ -57,6 +58,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       // point of the cell is from it (the search radius for the others).
       double reach = 0.0;
       double box[6] = { Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity };
+      cellD2.resize(static_cast<std::size_t>(grid.CellSizeOf(c)));
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
         const double* p = xyz + 3 * grid.PointAt(i);
@@ -72,6 +74,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
           }
         }
         assign[i] = static_cast<SampleId>(best);
+        cellD2[static_cast<std::size_t>(i - grid.CellStart[c])] = bestD;
         reach = std::max(reach, bestD);
         for (int a = 0; a < 3; ++a)
         {
@@ -118,7 +121,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       {
         const double* p = xyz + 3 * grid.PointAt(i);
         Index best = assign[i];
-        double bestD = AssignedDistance2(xyz, grid, samples, assign, i); // (pass 1's value)
+        double bestD = cellD2[static_cast<std::size_t>(i - grid.CellStart[c])];
         for (const auto& candidate : candidates)
         {
           if (candidate.first > bestD)
