@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <random>
 #include <set>
 
@@ -115,17 +116,36 @@ TEST(ASMSimplifyBadInput, NaNAndInfinitePointsAreSkipped)
   {
     asmtest::Add(c, 0, -inf, inf);
   }
-  FilterRun run;
-  run.Filter->SetOutputFraction(0.1);
-  vtkPolyData* out = run.Execute(ToPolyData(c));
-  ASSERT_EQ(out->GetNumberOfPoints(), 100) << "10 % of the 1000 finite points";
-  ExpectFinite(out);
-  EXPECT_EQ(run.Messages->Warnings, 1);
-  EXPECT_EQ(out->GetFieldData()->GetArray("NumberOfSkippedPoints")->GetTuple1(0), 15.0);
-  auto* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
-  for (vtkIdType i = 0; i < 100; ++i)
+  // Doubles and floats (read in place), both modes, with the curvature
+  // (its k-d tree over the finite points only).
+  for (const int type : { VTK_DOUBLE, VTK_FLOAT })
   {
-    EXPECT_LT(ids->GetTuple1(i), 1000.0);
+    for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+    {
+      const std::string what = std::string(type == VTK_FLOAT ? "float" : "double") +
+        (mode == vtkASMSimplify::PAPER ? ", paper" : ", default");
+      FilterRun run;
+      run.Filter->SetOutputFraction(0.1);
+      run.Filter->SetMode(mode);
+      run.Filter->SetGenerateCurvature(true);
+      vtkPolyData* out = run.Execute(ToPolyData(c, type));
+      ASSERT_EQ(out->GetNumberOfPoints(), 100) << "10 % of the 1000 finite points, " << what;
+      ExpectFinite(out);
+      EXPECT_EQ(run.Messages->Warnings, 1) << what;
+      EXPECT_EQ(out->GetFieldData()->GetArray("NumberOfSkippedPoints")->GetTuple1(0), 15.0) << what;
+      auto* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
+      for (vtkIdType i = 0; i < 100; ++i)
+      {
+        EXPECT_LT(ids->GetTuple1(i), 1000.0) << what;
+      }
+      auto* curvature = out->GetPointData()->GetArray("MeanCurvature");
+      ASSERT_NE(curvature, nullptr) << what;
+      for (vtkIdType i = 0; i < 100; ++i)
+      {
+        // A unit sphere: mean curvature about 1 in magnitude everywhere.
+        EXPECT_NEAR(std::abs(curvature->GetTuple1(i)), 1.0, 0.3) << what << ", point " << i;
+      }
+    }
   }
   // Only non-finite points: an empty output.
   FilterRun none;
