@@ -142,7 +142,8 @@ public:
    * FEATURE_PRESERVING (default) or PAPER. PAPER runs the paper's pipeline
    * exactly as read in ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING adds
    * the fixes below, each of which can be switched off on its own. The
-   * options below the Mode are ignored in PAPER mode.
+   * options below the Mode are ignored in PAPER mode. FEATURE_PRESERVING
+   * keeps at most 2^31 - 1 output points (an error above that).
    */
   vtkSetClampMacro(Mode, int, FEATURE_PRESERVING, PAPER);
   vtkGetMacro(Mode, int);
