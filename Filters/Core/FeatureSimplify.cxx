@@ -15,7 +15,6 @@
 #include "SnappedHoles.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -29,49 +28,6 @@ int CrossIterations(const SimplifyParameters& p)
 {
   return std::max(0, std::min(MaxCrossCellIterations, p.CrossCellIterations));
 }
-
-// The input point id of each slot of the cell-ordered copy (the grid's
-// order), held in 32 bits when every id fits: 4 bytes per point less while
-// the passes run.
-class SlotIds
-{
-public:
-  SlotIds(PointArray<Index>& order, const Execution& execution)
-  {
-    const auto n = static_cast<Index>(order.size());
-    this->Narrow.resize(order.size());
-    std::atomic<bool> fits{ true };
-    execution.Run(0, n, [&](Index b, Index e) {
-      for (Index i = b; i < e; ++i)
-      {
-        const Index id = order[i];
-        if (id < 0 || id > static_cast<Index>(std::numeric_limits<std::uint32_t>::max()))
-        {
-          fits.store(false, std::memory_order_relaxed);
-          return;
-        }
-        this->Narrow[i] = static_cast<std::uint32_t>(id);
-      }
-    });
-    if (fits.load())
-    {
-      PointArray<Index>().swap(order);
-    }
-    else
-    {
-      PointArray<std::uint32_t>().swap(this->Narrow);
-      this->Wide.swap(order);
-    }
-  }
-  Index operator[](Index slot) const
-  {
-    return this->Wide.empty() ? static_cast<Index>(this->Narrow[slot]) : this->Wide[slot];
-  }
-
-private:
-  PointArray<std::uint32_t> Narrow;
-  PointArray<Index> Wide;
-};
 
 // Per-sample facts besides the position.
 struct SampleInfo

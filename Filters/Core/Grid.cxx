@@ -294,6 +294,34 @@ CellGrid BuildCellGrid(
   return grid;
 }
 
+SlotIds::SlotIds(PointArray<Index>& order, const Execution& execution)
+{
+  const auto n = static_cast<Index>(order.size());
+  this->Narrow.resize(order.size());
+  std::atomic<bool> fits{ true };
+  execution.Run(0, n, [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      const Index id = order[i];
+      if (id < 0 || id > static_cast<Index>(std::numeric_limits<std::uint32_t>::max()))
+      {
+        fits.store(false, std::memory_order_relaxed);
+        return;
+      }
+      this->Narrow[i] = static_cast<std::uint32_t>(id);
+    }
+  });
+  if (fits.load())
+  {
+    PointArray<Index>().swap(order);
+  }
+  else
+  {
+    PointArray<std::uint32_t>().swap(this->Narrow);
+    this->Wide.swap(order);
+  }
+}
+
 namespace
 {
 // The number of distinct cells of the points, for grids too large for a

@@ -117,6 +117,24 @@ struct VTKASMFILTERS_EXPORT CellGrid
   }
 };
 
+/// The point id of each slot of a grid's order, taken over from that order
+/// (which is released), in 32 bits when every id fits: for a copy of the
+/// points in cell order (slot i holds point ids[i]), 4 bytes per point
+/// instead of 8.
+class VTKASMFILTERS_EXPORT SlotIds
+{
+public:
+  SlotIds(PointArray<Index>& order, const Execution& execution = {});
+  Index operator[](Index slot) const
+  {
+    return this->Wide.empty() ? static_cast<Index>(this->Narrow[slot]) : this->Wide[slot];
+  }
+
+private:
+  PointArray<std::uint32_t> Narrow;
+  PointArray<Index> Wide; ///< (when some id does not fit in 32 bits)
+};
+
 /// Hash the points into the grid `spec` (deterministic: ties by point id).
 VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(Coordinates xyz, IdView ids,
   const GridSpec& spec, const Execution& execution = {});

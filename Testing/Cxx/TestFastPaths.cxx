@@ -693,3 +693,21 @@ TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)
   }
   EXPECT_GT(fits, nq / 2);
 }
+
+TEST(FastPaths, SlotIdsKeepEveryIdInEitherWidth)
+{
+  // 32 bits when every id fits, the 64-bit order itself when one does not;
+  // either way the order is taken over (released).
+  asmcore::PointArray<Index> narrow = { 5, 2, 7, 4294967295LL };
+  const asmcore::SlotIds small(narrow, UnevenTwoThreads());
+  EXPECT_TRUE(narrow.empty());
+  EXPECT_EQ(small[0], 5);
+  EXPECT_EQ(small[2], 7);
+  EXPECT_EQ(small[3], 4294967295LL);
+  asmcore::PointArray<Index> wide = { 1, Index(1) << 33, 3 };
+  const asmcore::SlotIds large(wide, UnevenTwoThreads());
+  EXPECT_TRUE(wide.empty());
+  EXPECT_EQ(large[0], 1);
+  EXPECT_EQ(large[1], Index(1) << 33);
+  EXPECT_EQ(large[2], 3);
+}
