@@ -313,12 +313,6 @@ int vtkASMSimplify::RequestData(
     ids = asmcore::IdView();
     xyz = asmcore::Coordinates();
   }
-  else if (auto* floats = distributed ? nullptr : vtkFloatArray::SafeDownCast(input->GetPoints()->GetData()))
-  {
-    // The curvature reads a float cloud in place (its k-d tree holds a copy).
-    coordinateCopy.reset();
-    xyz = floats->GetPointer(0);
-  }
 
   // Points and one vertex cell each.
   vtkNew<vtkPoints> points;
