@@ -15,7 +15,7 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 
 /// AssignToSamples for the points of a cell that owns many samples: a k-d
 /// tree of the ring's samples (ties: lower index, as the brute-force search).
-void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, Index c, PointArray<SampleId>& assign, std::vector<Index>& ringSamples)
 {
   ringSamples.clear();
@@ -31,13 +31,13 @@ void AssignLargeCell(const double* xyz, const CellGrid& grid, const CellNeighbor
   const Neighbors tree(pos, ringSamples);
   for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
   {
-    const NearestPoint nearest = tree.Nearest(xyz + 3 * grid.PointAt(i));
+    const NearestPoint nearest = tree.Nearest(xyz.At(grid.PointAt(i)).data());
     assign[i] = static_cast<SampleId>(nearest.Id);
   }
 }
 } // namespace
 
-void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution)
 {
   assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
@@ -61,7 +61,8 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       cellD2.resize(static_cast<std::size_t>(grid.CellSizeOf(c)));
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.PointAt(i);
+        double p[3];
+        xyz.Get(grid.PointAt(i), p);
         Index best = -1;
         double bestD = Infinity;
         for (Index s = first; s < last; ++s)
@@ -85,7 +86,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       // The neighbours' samples that can be nearer for some point of c:
       // within `reach` of the box of c's points.
       candidates.clear();
-      const Index* ring = neighbors.Of(c);
+      const CellRef* ring = neighbors.Of(c);
       const double r = std::sqrt(reach);
       for (int k = 0; k < 27; ++k)
       {
@@ -119,7 +120,8 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
       std::sort(candidates.begin(), candidates.end());
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.PointAt(i);
+        double p[3];
+        xyz.Get(grid.PointAt(i), p);
         Index best = assign[i];
         double bestD = cellD2[static_cast<std::size_t>(i - grid.CellStart[c])];
         for (const auto& candidate : candidates)
@@ -142,7 +144,7 @@ void AssignToSamples(const double* xyz, const CellGrid& grid, const CellNeighbor
   });
 }
 
-void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void UpdateAssignment(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
   PointArray<SampleId>& assign, const Execution& execution)
 {
@@ -166,7 +168,7 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
         AssignLargeCell(xyz, grid, neighbors, samples, c, assign, ringSamples);
         continue;
       }
-      const Index* ring = neighbors.Of(c);
+      const CellRef* ring = neighbors.Of(c);
       near.clear();
       for (int k = 0; k < 27; ++k)
       {
@@ -181,7 +183,8 @@ void UpdateAssignment(const double* xyz, const CellGrid& grid, const CellNeighbo
       }
       for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
       {
-        const double* p = xyz + 3 * grid.PointAt(i);
+        double p[3];
+        xyz.Get(grid.PointAt(i), p);
         const Index before = assign[i] >= 0 ? renumber[assign[i]] : -1;
         Index best = before;
         // (Its sample, if it stayed, is where it was: the same distance.)

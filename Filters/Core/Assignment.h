@@ -22,19 +22,19 @@ namespace asmcore
 /// those cells owns a sample. The squared distance the search compared is
 /// AssignedDistance2 (recomputed where it is needed: no array of 8 bytes per
 /// point).
-VTKASMFILTERS_EXPORT void AssignToSamples(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT void AssignToSamples(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, PointArray<SampleId>& assign,
   const Execution& execution);
 
 /// The squared distance from the point in slot i to its sample (infinity
 /// without one), bit for bit the value the assignment compared, as long as
 /// that sample has not moved since.
-inline double AssignedDistance2(const double* xyz, const CellGrid& grid, const SampleSet& samples,
+inline double AssignedDistance2(Coordinates xyz, const CellGrid& grid, const SampleSet& samples,
   const PointArray<SampleId>& assign, Index i)
 {
   return assign[i] < 0
     ? std::numeric_limits<double>::infinity()
-    : SquaredDistance(xyz + 3 * grid.PointAt(i), samples.Position.data() + 3 * assign[i]);
+    : SquaredDistance(xyz.At(grid.PointAt(i)).data(), samples.Position.data() + 3 * assign[i]);
 }
 
 /// AssignToSamples after a few samples moved (FillHoles): `assign` holds
@@ -46,7 +46,7 @@ inline double AssignedDistance2(const double* xyz, const CellGrid& grid, const S
 /// moved are searched again; the others only compare with the moved samples
 /// of their ring. The points of a cell owning more than LargeCellBudget
 /// samples are searched again (with a k-d tree).
-VTKASMFILTERS_EXPORT void UpdateAssignment(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT void UpdateAssignment(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,
   const std::vector<char>& moved, PointArray<SampleId>& assign, const Execution& execution);
 } // namespace asmcore

@@ -38,7 +38,7 @@ Eigen::Vector3d CellFrame::ToLocal(const double p[3]) const
   return this->Axes.transpose() * d;
 }
 
-CellFrame ComputeCellFrame(const double* xyz, const Index* ids, Index count)
+CellFrame ComputeCellFrame(Coordinates xyz, const Index* ids, Index count)
 {
   CellFrame frame;
   frame.Count = count;
@@ -51,15 +51,17 @@ CellFrame ComputeCellFrame(const double* xyz, const Index* ids, Index count)
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (Index i = 0; i < count; ++i)
   {
-    const double* p = xyz + 3 * ids[i];
-    sum += Eigen::Vector3d(p[0], p[1], p[2]);
+    Eigen::Vector3d p;
+    xyz.Get(ids[i], p.data());
+    sum += p;
   }
   frame.Centroid = sum / static_cast<double>(count);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (Index i = 0; i < count; ++i)
   {
-    const double* p = xyz + 3 * ids[i];
-    const Eigen::Vector3d d = Eigen::Vector3d(p[0], p[1], p[2]) - frame.Centroid;
+    Eigen::Vector3d p;
+    xyz.Get(ids[i], p.data());
+    const Eigen::Vector3d d = p - frame.Centroid;
     cov.noalias() += d * d.transpose();
   }
   cov /= static_cast<double>(count);

@@ -42,11 +42,17 @@ CellNeighborTable BuildCellNeighbors(const CellGrid& grid, const Execution& exec
 {
   CellNeighborTable table;
   const Index cells = grid.NumberOfCells();
+  if (cells > CellNeighborTable::MaxTableCells)
+  {
+    return table;
+  }
   table.Cells.resize(static_cast<std::size_t>(27 * cells));
   execution.Run(0, cells, [&](Index b, Index e) {
+    Index ring[27];
     for (Index c = b; c < e; ++c)
     {
-      CellNeighborsOf(grid, c, table.Cells.data() + 27 * c);
+      CellNeighborsOf(grid, c, ring);
+      std::copy_n(ring, 27, table.Cells.data() + 27 * c); // (each < cells: fits)
     }
   });
   return table;

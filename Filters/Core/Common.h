@@ -14,6 +14,7 @@
 #include "vtkASMFiltersModule.h" // For export macro
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -266,6 +267,13 @@ struct Vec3Field
     out[0] = static_cast<double>(p[0]);
     out[1] = static_cast<double>(p[1]);
     out[2] = static_cast<double>(p[2]);
+  }
+  /// Point `id` as three doubles (a value: for a call that takes double[3]).
+  std::array<double, 3> At(Index id) const
+  {
+    std::array<double, 3> p;
+    this->Get(id, p.data());
+    return p;
   }
   /// Where point `id`'s numbers are (for a prefetch).
   const void* Address(Index id) const

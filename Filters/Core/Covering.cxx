@@ -4,12 +4,13 @@
 #include "GroupBy.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <utility>
 
 namespace asmcore
 {
-void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void RefineCovering(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution)
 {
   AssignToSamples(xyz, grid, neighbors, samples, assign, execution);
@@ -21,7 +22,8 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
   GroupBy(
     points, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, start, members,
     execution);
-  auto at = [xyz, &grid](Index slot) { return xyz + 3 * grid.PointAt(slot); };
+  // A slot's point, as three doubles (a value).
+  auto at = [xyz, &grid](Index slot) { return xyz.At(grid.PointAt(slot)); };
   execution.Run(0, count, [&](Index b, Index e) {
     std::vector<std::pair<double, Index>> candidates; // (squared distance to the centroid, slot)
     for (Index s = b; s < e; ++s)
@@ -48,8 +50,8 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
       Index current = -1; // the member the sample sits on, if any
       for (Index m = first; m < last; ++m)
       {
-        candidates.emplace_back(SquaredDistance(at(members[m]), centroid), members[m]);
-        if (current < 0 && SquaredDistance(at(members[m]), position) == 0.0)
+        candidates.emplace_back(SquaredDistance(at(members[m]).data(), centroid), members[m]);
+        if (current < 0 && SquaredDistance(at(members[m]).data(), position) == 0.0)
         {
           current = members[m];
         }
@@ -74,21 +76,21 @@ void RefineCovering(const double* xyz, const CellGrid& grid, const CellNeighborT
       Index best = -1;
       for (const auto& candidate : candidates)
       {
-        const double* c = at(candidate.second);
+        const std::array<double, 3> c = at(candidate.second);
         double radius = 0.0;
         const double stop = bestRadius * (1.0 + 1e-12);
         for (Index m = first; m < last && radius <= stop; ++m)
         {
-          radius = std::max(radius, SquaredDistance(at(members[m]), c));
+          radius = std::max(radius, SquaredDistance(at(members[m]).data(), c.data()));
         }
         if (best < 0 ||
-          (NearlyEqual(radius, bestRadius) ? PositionBefore(c, at(best)) : radius < bestRadius))
+          (NearlyEqual(radius, bestRadius) ? PositionBefore(c.data(), at(best).data()) : radius < bestRadius))
         {
           bestRadius = radius;
           best = candidate.second;
         }
       }
-      std::copy(at(best), at(best) + 3, position);
+      xyz.Get(grid.PointAt(best), position);
     }
   });
 }

@@ -30,7 +30,7 @@ constexpr int CoveringCandidates = 16;
 /// One round of covering refinement (see above) of the free samples of
 /// `samples`; `assign` is left holding the assignment the round started from
 /// (AssignToSamples).
-VTKASMFILTERS_EXPORT void RefineCovering(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT void RefineCovering(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, SampleSet& samples, PointArray<SampleId>& assign,
   const Execution& execution);
 } // namespace asmcore

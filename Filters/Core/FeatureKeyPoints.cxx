@@ -6,16 +6,17 @@
 
 namespace asmcore
 {
-bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+bool IsLocalExtreme(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   Index c, Index id, const double d[3], double radius, double& prominence)
 {
-  const double* p = xyz + 3 * id;
+  double p[3];
+  xyz.Get(id, p);
   const double r = std::min(radius, grid.Spec.CellSize);
   const double r2 = r * r;
   const double height = d[0] * p[0] + d[1] * p[1] + d[2] * p[2];
   double sum = 0.0;
   Index count = 0;
-  const Index* ring = neighbors.Of(c);
+  const CellRef* ring = neighbors.Of(c);
   // The neighbours first, the own cell (where the candidate is the extreme
   // already) last: grid-cut candidates fall quickly.
   for (int step = 0; step < 27; ++step)
@@ -29,7 +30,8 @@ bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborT
     const Index end = grid.CellStart[n + 1];
     for (Index slot = grid.CellStart[n]; slot < end; ++slot)
     {
-      const double* x = xyz + 3 * grid.PointAt(slot);
+      double x[3];
+      xyz.Get(grid.PointAt(slot), x);
       const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
       if (dx * dx + dy * dy + dz * dz > r2)
       {
@@ -48,11 +50,12 @@ bool IsLocalExtreme(const double* xyz, const CellGrid& grid, const CellNeighborT
   return true;
 }
 
-bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+bool IsSparseCellTip(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   Index c, Index id, double radius, double& prominence)
 {
   // The direction away from the centroid of the other points within the radius.
-  const double* p = xyz + 3 * id;
+  double p[3];
+  xyz.Get(id, p);
   const double r = std::min(radius, grid.Spec.CellSize);
   double mean[3] = { 0.0, 0.0, 0.0 };
   Index count = 0;
@@ -65,7 +68,8 @@ bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighbor
     }
     for (Index slot = grid.CellStart[nb]; slot < grid.CellStart[nb + 1]; ++slot)
     {
-      const double* x = xyz + 3 * grid.PointAt(slot);
+      double x[3];
+      xyz.Get(grid.PointAt(slot), x);
       const double dx = x[0] - p[0], dy = x[1] - p[1], dz = x[2] - p[2];
       if (grid.PointAt(slot) != id && dx * dx + dy * dy + dz * dz <= r * r)
       {
@@ -85,7 +89,7 @@ bool IsSparseCellTip(const double* xyz, const CellGrid& grid, const CellNeighbor
   return IsLocalExtreme(xyz, grid, neighbors, c, id, d, radius, prominence);
 }
 
-std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
+std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
   const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints)
 {
@@ -106,7 +110,7 @@ std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
           key.Prominence > options.MinimumProminence)
         {
           key.Point = points[i];
-          std::copy(xyz + 3 * points[i], xyz + 3 * points[i] + 3, key.Position);
+          xyz.Get(points[i], key.Position);
           keys.push_back(key);
         }
       }
@@ -145,7 +149,6 @@ std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
     {
       key.Prominence = direction.dot(frame.Axes * q[local]);
     }
-    const double* p = xyz + 3 * id;
     if (centroid && !options.ExtremeRepresentative)
     {
       const Eigen::Vector3d world = frame.Centroid + frame.Axes * (*centroid);
@@ -157,7 +160,7 @@ std::vector<FeatureKey> FindFeatureKeys(const double* xyz, const CellGrid& grid,
     }
     else
     {
-      std::copy(p, p + 3, key.Position);
+      xyz.Get(id, key.Position);
     }
     keys.push_back(key);
   };

@@ -55,21 +55,21 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 /// The key points of cell c, ordered by decreasing prominence (ties: point
 /// id). `q` and `cellPoints` are scratch space (the cell's points in its PCA
 /// frame; its point ids when the grid is in slot order).
-VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(const double* xyz,
+VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz,
   const CellGrid& grid, const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
   const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints);
 
 /// A tip alone in a cell too sparse for a frame: whether input point `id` of
 /// cell c is the extreme (IsLocalExtreme) along the direction away from the
 /// centroid of the other points within `radius` (at least two of them).
-VTKASMFILTERS_EXPORT bool IsSparseCellTip(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT bool IsSparseCellTip(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, Index c, Index id, double radius, double& prominence);
 
 /// Lemma 2 across cell borders: whether input point `id` of cell c is the
 /// extreme along the unit vector d among all points within `radius` (at most
 /// one cell edge); on success `prominence` is d.p minus the mean of d.x over
 /// those points.
-VTKASMFILTERS_EXPORT bool IsLocalExtreme(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT bool IsLocalExtreme(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, Index c, Index id, const double d[3], double radius,
   double& prominence);
 } // namespace asmcore

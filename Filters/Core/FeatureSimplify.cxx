@@ -33,13 +33,23 @@ int CrossIterations(const SimplifyParameters& p)
 struct SampleInfo
 {
   Index Owner = -1;     // grid cell whose frame gives the normal
-  Index KeyPoint = -1;  // key samples: the extreme input point
+  /// Key samples: the extreme input point (a slot); from the output's first
+  /// step on, every sample's representative (an input point id).
+  Index Point = -1;
   double KeyError = 0.0;
+};
+
+// What the output needs of a cell's frame.
+struct CellSurface
+{
+  Eigen::Vector3d Normal;
+  Eigen::Vector3d Centroid;
+  double SurfaceVariation;
 };
 
 // Every sample gets at least one member when its ring has a point to spare:
 // the nearest point of a cluster with two or more members moves to it.
-void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
   std::vector<Index>& count)
 {
@@ -50,7 +60,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
       continue;
     }
     const double* p = samples.Position.data() + 3 * s;
-    const Index* ring = neighbors.Of(info[s].Owner);
+    const CellRef* ring = neighbors.Of(info[s].Owner);
     Index best = -1;
     double bestD = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 27; ++k)
@@ -62,7 +72,8 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
         {
           continue;
         }
-        const double* x = xyz + 3 * grid.PointAt(i);
+        double x[3];
+        xyz.Get(grid.PointAt(i), x);
         const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
           (x[2] - p[2]) * (x[2] - p[2]);
         if (d < bestD)
@@ -87,7 +98,7 @@ void FillEmptyClusters(const double* xyz, const CellGrid& grid, const CellNeighb
 // Points that no sample within the searched cell rings took (sparse clouds
 // with fewer samples than cells) join the nearest sample anywhere, so that
 // the clusters stay a partition of the points.
-void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count,
+void JoinUnassignedPoints(Coordinates P, const SampleSet& samples, Index count,
   PointArray<SampleId>& assign, const Execution& execution)
 {
   if (count == 0 || std::find(assign.begin(), assign.end(), Index(-1)) == assign.end())
@@ -102,7 +113,7 @@ void JoinUnassignedPoints(const double* P, const SampleSet& samples, Index count
     {
       if (assign[i] < 0)
       {
-        const NearestPoint nearest = tree.Nearest(P + 3 * i);
+        const NearestPoint nearest = tree.Nearest(P.At(i).data());
         assign[i] = nearest.Id >= 0 ? nearest.Id : 0;
       }
     }
@@ -172,32 +183,53 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     return result;
   }
   // Every later pass reads the points cell by cell: a copy in cell order
-  // (slot i holds point original.Order[i]) keeps those reads sequential.
+  // (slot i holds point original.Order[i]) keeps those reads sequential. Of
+  // the input's type: a float cloud's copy is floats (12 bytes per point).
   // (Left uninitialised: the parallel copy takes the page faults.)
-  std::unique_ptr<double[]> cellOrdered(new double[static_cast<std::size_t>(3 * total)]);
-  execution.Run(0, total, [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
-    {
-      if (i + 16 < e)
+  std::unique_ptr<double[]> cellDoubles;
+  std::unique_ptr<float[]> cellFloats;
+  const auto copyInCellOrder = [&](auto* to, const auto* from) {
+    execution.Run(0, total, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
       {
-        Prefetch(xyz.Address(original.Order[i + 16]));
+        if (i + 16 < e)
+        {
+          Prefetch(from + 3 * original.Order[i + 16]);
+        }
+        std::copy_n(from + 3 * original.Order[i], 3, to + 3 * i);
       }
-      xyz.Get(original.Order[i], &cellOrdered[3 * i]);
-    }
-  });
-  const double* P = cellOrdered.get(); // released before the output
+    });
+  };
+  if (xyz.Floats)
+  {
+    cellFloats.reset(new float[static_cast<std::size_t>(3 * total)]);
+    copyInCellOrder(cellFloats.get(), xyz.Floats);
+  }
+  else
+  {
+    cellDoubles.reset(new double[static_cast<std::size_t>(3 * total)]);
+    copyInCellOrder(cellDoubles.get(), xyz.Doubles);
+  }
+  // (released before the output)
+  Coordinates P = xyz.Floats ? Coordinates(cellFloats.get()) : Coordinates(cellDoubles.get());
   // The same cells over the copy, in slot order, and each slot's point id.
   CellGrid grid;
   grid.Spec = original.Spec;
   grid.CellStart.swap(original.CellStart);
   grid.CellKey.swap(original.CellKey);
   grid.SlotOrder = true; // (no identity list: 8 bytes per point less)
-  const SlotIds idOf(original.Order, execution);
+  auto slotIds = std::make_unique<const SlotIds>(original.Order, execution);
+  const SlotIds& idOf = *slotIds;
   const Index cells = grid.NumberOfCells();
   const double h = grid.Spec.CellSize;
   result.CellSize = h;
   result.NumberOfCells = cells;
   CellNeighborTable neighbors = BuildCellNeighbors(grid, execution);
+  if (cells > CellNeighborTable::MaxTableCells)
+  {
+    result.Aborted = true; // (more cells than the neighbour table can number)
+    return result;
+  }
   if (abort(0.2))
   {
     return result;
@@ -290,7 +322,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         const FeatureKey& key = keys[c][k];
         std::copy(key.Position, key.Position + 3, samples.Position.data() + 3 * (first + k));
         samples.Fixed[first + k] = 1;
-        info[first + k].KeyPoint = key.Point;
+        info[first + k].Point = key.Point;
         info[first + k].KeyError = key.Error;
         exclude.push_back(key.Point);
       }
@@ -298,9 +330,16 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         budget[c], parameters.LloydIterations, samples, scratch);
     }
   });
-  // The key points are placed: released (the budgets are in samples.Start).
+  // The key points are placed: released (the budgets are in samples.Start),
+  // and of the frames only what the output needs is kept.
   std::vector<std::vector<FeatureKey>>().swap(keys);
   std::vector<Index>().swap(budget);
+  std::vector<CellSurface> surfaces(static_cast<std::size_t>(cells));
+  for (Index c = 0; c < cells; ++c)
+  {
+    surfaces[c] = { frames[c].Normal(), frames[c].Centroid, frames[c].SurfaceVariation() };
+  }
+  std::vector<CellFrame>().swap(frames);
   if (abort(0.6))
   {
     return result;
@@ -365,24 +404,126 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   }
   FillEmptyClusters(P, grid, neighbors, samples, info, assign, clusterSize);
   // The last step that looks across cells: the table is released.
-  std::vector<Index>().swap(neighbors.Cells);
+  std::vector<CellRef>().swap(neighbors.Cells);
   // The members of each sample as slots of the cell-ordered copy (in slot
-  // order) while the samples are laid out: their coordinates are read from
-  // it, where a cluster's points are near each other in memory, instead of
-  // scattered over the input. They become input point ids at the end.
+  // order) for the output's first step, which reads their coordinates there
+  // (a cluster's points are near each other in memory, not scattered over
+  // the input).
   std::vector<Index> memberStart;
-  // (The peak memory of a run: small per-block counts, an eighth of an
-  // Index per point, so at most two blocks at 5 %.)
+  // (Small per-block counts, an eighth of an Index per point: at most two
+  // blocks at 5 %.)
   GroupBy(
     total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; },
     memberStart, result.Members, execution, 8, 1 << 16, 0.125);
   PointArray<SampleId>().swap(assign);
+  std::vector<Index>().swap(clusterSize); // (the groups' sizes, from memberStart)
   if (abort(0.9))
   {
     return result;
   }
 
-  // Output samples.
+  // Output, step 1, with the copy: each sample's final position (into
+  // samples.Position) and representative (info[s].Point), and the bound on
+  // the snapped samples' holes. Then the members and representatives become
+  // input point ids and the copy is released, before the samples are laid
+  // out (step 2).
+  const bool inputPointSamples = parameters.Snap || parameters.InputPointSamples;
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      double* p = samples.Position.data() + 3 * s;
+      const Index* first = result.Members.data() + memberStart[s]; // slots
+      const Index size = memberStart[s + 1] - memberStart[s];
+      // The member nearest the sample, as a slot (ties: by position, then
+      // by input point id).
+      Index nearest = info[s].Point;
+      double bestD = std::numeric_limits<double>::infinity();
+      double mean[3] = { 0.0, 0.0, 0.0 };
+      for (Index m = 0; m < size; ++m)
+      {
+        double x[3];
+        P.Get(first[m], x);
+        for (int a = 0; a < 3; ++a)
+        {
+          mean[a] += x[a];
+        }
+        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+          (x[2] - p[2]) * (x[2] - p[2]);
+        // Ties, rounding included (a two-point cluster's centre is as near
+        // to both): the first position, whatever the order of the points.
+        // (Duplicates: the lower id.)
+        const bool tie = NearlyEqual(d, bestD);
+        if (tie && nearest >= 0)
+        {
+          const std::array<double, 3> y = P.At(nearest);
+          if (PositionBefore(x, y.data()) ||
+            (!PositionBefore(y.data(), x) && idOf[first[m]] < idOf[nearest]))
+          {
+            bestD = d;
+            nearest = first[m];
+          }
+        }
+        else if (tie || d < bestD)
+        {
+          bestD = d;
+          nearest = first[m];
+        }
+      }
+      if (nearest < 0)
+      {
+        nearest = grid.CellStart[info[s].Owner]; // no member could be found
+      }
+      const bool fixed = samples.Fixed[s] != 0;
+      const bool snap = inputPointSamples && !(fixed && parameters.ExtremeKeyPoints);
+      // A key sample placed on its extreme point stands for that point, even
+      // when the point joined another sample's cluster (a tie with a sample
+      // at the same position): its position is exactly that input point.
+      if (!(fixed && parameters.ExtremeKeyPoints && info[s].Point >= 0))
+      {
+        info[s].Point = nearest;
+      }
+      // A free sample that is not snapped is its final cluster's centroid.
+      if (snap)
+      {
+        P.Get(nearest, p);
+      }
+      else if (!fixed && size > 0)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = mean[a] / static_cast<double>(size);
+        }
+      }
+    }
+  });
+  if (parameters.BoundSnappedHoles)
+  {
+    std::vector<char> snapped(static_cast<std::size_t>(count), 0);
+    for (Index s = 0; s < count; ++s)
+    {
+      // (Snap is the user's demand for input points: left alone.)
+      snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
+        memberStart[s + 1] - memberStart[s] > 1;
+    }
+    BoundSnappedHoles(
+      P, memberStart, result.Members.data(), snapped, samples.Position.data(), execution);
+  }
+  execution.Run(0, static_cast<Index>(result.Members.size()), [&](Index b, Index e) {
+    for (Index j = b; j < e; ++j)
+    {
+      result.Members[j] = idOf[result.Members[j]];
+    }
+  });
+  for (SampleInfo& sample : info)
+  {
+    sample.Point = idOf[sample.Point];
+  }
+  cellFloats.reset();
+  cellDoubles.reset();
+  slotIds.reset();
+  P = Coordinates();
+
+  // Step 2: the samples.
   Eigen::Vector3d cloudCentroid;
   if (parameters.CloudCentroid)
   {
@@ -397,101 +538,36 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     for (Index s = b; s < e; ++s)
     {
       Sample& out = result.Samples[s];
-      const double* p = samples.Position.data() + 3 * s;
-      const CellFrame& frame = frames[info[s].Owner];
+      const CellSurface& surface = surfaces[info[s].Owner];
       out.MemberBegin = memberStart[s];
-      out.ClusterSize = clusterSize[s];
-      const Index* first = result.Members.data() + memberStart[s]; // slots
-      // The member nearest the sample, as a slot (ties: by position, then
-      // by input point id).
-      Index nearest = info[s].KeyPoint;
-      double bestD = std::numeric_limits<double>::infinity();
+      out.ClusterSize = memberStart[s + 1] - memberStart[s];
+      out.Representative = info[s].Point;
+      std::copy_n(samples.Position.data() + 3 * s, 3, out.Position);
+      // The normal: the cell's, oriented along the members' input normals,
+      // else away from the cloud's centroid.
       Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
-      double mean[3] = { 0.0, 0.0, 0.0 };
-      for (Index m = 0; m < clusterSize[s]; ++m)
+      for (Index m = 0; normals && m < out.ClusterSize; ++m)
       {
-        const double* x = P + 3 * first[m];
-        for (int a = 0; a < 3; ++a)
+        Eigen::Vector3d v;
+        normals.Get(result.Members[out.MemberBegin + m], v.data());
+        if (v.allFinite())
         {
-          mean[a] += x[a];
-        }
-        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-          (x[2] - p[2]) * (x[2] - p[2]);
-        // Ties, rounding included (a two-point cluster's centre is as near
-        // to both): the first position, whatever the order of the points.
-        // (Duplicates: the lower id.)
-        const double* y = nearest < 0 ? nullptr : P + 3 * nearest;
-        if (NearlyEqual(d, bestD)
-            ? !y || PositionBefore(x, y) ||
-              (!PositionBefore(y, x) && idOf[first[m]] < idOf[nearest])
-            : d < bestD)
-        {
-          bestD = d;
-          nearest = first[m];
-        }
-        if (normals)
-        {
-          Eigen::Vector3d v;
-          normals.Get(idOf[first[m]], v.data());
-          if (v.allFinite())
-          {
-            normalSum += v;
-          }
+          normalSum += v;
         }
       }
-      if (nearest < 0)
-      {
-        nearest = grid.CellStart[info[s].Owner]; // no member could be found
-      }
-      const bool snap = (parameters.Snap || parameters.InputPointSamples) &&
-        !(samples.Fixed[s] && parameters.ExtremeKeyPoints);
-      // A key sample placed on its extreme point stands for that point, even
-      // when the point joined another sample's cluster (a tie with a sample
-      // at the same position): its position is exactly that input point.
-      out.Representative = idOf[samples.Fixed[s] && parameters.ExtremeKeyPoints &&
-            info[s].KeyPoint >= 0
-          ? info[s].KeyPoint
-          : nearest];
-      // A free sample that is not snapped is its final cluster's centroid.
-      const bool centroid = !snap && !samples.Fixed[s] && clusterSize[s] > 0;
-      for (int a = 0; a < 3; ++a)
-      {
-        out.Position[a] = snap ? P[3 * nearest + a]
-                               : (centroid ? mean[a] / static_cast<double>(clusterSize[s]) : p[a]);
-      }
-      Eigen::Vector3d normal = frame.Normal();
+      Eigen::Vector3d normal = surface.Normal;
       const Eigen::Vector3d reference =
-        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(frame.Centroid - cloudCentroid);
+        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(surface.Centroid - cloudCentroid);
       if (normal.dot(reference) < 0.0)
       {
         normal = -normal;
       }
       std::copy(normal.data(), normal.data() + 3, out.Normal);
-      out.SurfaceVariation = frame.SurfaceVariation();
+      out.SurfaceVariation = surface.SurfaceVariation;
       out.Key = samples.Fixed[s] != 0;
       out.KeyError = info[s].KeyError;
     }
   });
-  if (parameters.BoundSnappedHoles)
-  {
-    std::vector<char> snapped(static_cast<std::size_t>(count), 0);
-    for (Index s = 0; s < count; ++s)
-    {
-      // (Snap is the user's demand for input points: left alone.)
-      snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
-        clusterSize[s] > 1;
-    }
-    BoundSnappedHoles(P, snapped, result, execution); // (members are slots of P)
-  }
-  // The members as input point ids; the cell-ordered copy is done with.
-  execution.Run(0, static_cast<Index>(result.Members.size()), [&](Index b, Index e) {
-    for (Index j = b; j < e; ++j)
-    {
-      result.Members[j] = idOf[result.Members[j]];
-    }
-  });
-  cellOrdered.reset();
-  P = nullptr;
   if (parameters.OutputCell)
   {
     KeepOutputCells(result, info, grid, parameters);

@@ -76,7 +76,7 @@ std::vector<double> NegatedSpreads(const PointArray<SampleId>& assign, DistanceO
 }
 } // namespace
 
-Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+Index FillHoles(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const PointArray<SampleId>& assign, Index maxMoves,
   SampleSet& samples, std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
   Index firstBatch)
@@ -140,8 +140,9 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     for (Index m = start[k]; m < start[k + 1]; ++m)
     {
       const Index slot = members[m];
-      const double* p = xyz + 3 * grid.PointAt(slot);
-      const Index* ring = neighbors.Of(CellOfSlot(grid, slot));
+      double p[3];
+      xyz.Get(grid.PointAt(slot), p);
+      const CellRef* ring = neighbors.Of(CellOfSlot(grid, slot));
       double best = Infinity;
       Index heir = -1;
       for (int r = 0; r < 27; ++r)
@@ -185,16 +186,17 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
     {
       break;
     }
-    const double* p = xyz + 3 * grid.PointAt(i);
+    double p[3];
+    xyz.Get(grid.PointAt(i), p);
     const double d2 = distance2(i);
     const Index cell = CellOfSlot(grid, i);
-    const Index* ring = neighbors.Of(cell);
+    const CellRef* ring = neighbors.Of(cell);
     bool separate = true;
     for (int k = 0; k < 27 && separate; ++k)
     {
       for (Index g = ring[k] < 0 ? -1 : head[ring[k]]; g >= 0 && separate; g = chain[g])
       {
-        separate = SquaredDistance(p, xyz + 3 * grid.PointAt(gaps[g])) > d2;
+        separate = SquaredDistance(p, xyz.At(grid.PointAt(gaps[g])).data()) > d2;
       }
     }
     if (separate)
@@ -292,7 +294,7 @@ Index FillHoles(const double* xyz, const CellGrid& grid, const CellNeighborTable
       {
         blocked[t] = 1;
       }
-      std::copy(xyz + 3 * grid.PointAt(g), xyz + 3 * grid.PointAt(g) + 3, samples.Position.data() + 3 * s);
+      xyz.Get(grid.PointAt(g), samples.Position.data() + 3 * s);
       owner[s] = CellOfSlot(grid, g);
       movedSamples.push_back(s);
       wasMoved[s] = 1;

@@ -27,7 +27,7 @@ namespace asmcore
 /// parallel batches of candidates, `firstBatch` first, doubling up to 1024
 /// (1: one at a time, each at its turn, as a serial scan); the result does
 /// not depend on it.
-VTKASMFILTERS_EXPORT Index FillHoles(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT Index FillHoles(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, Index maxMoves,
   SampleSet& samples,
   std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,

@@ -615,13 +615,15 @@ KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options
   return result;
 }
 
-KeyClusters FindCellKeyClusters(const double* xyz, const Index* points, Index n,
+KeyClusters FindCellKeyClusters(Coordinates xyz, const Index* points, Index n,
   const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q)
 {
   q.resize(static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i)
   {
-    q[i] = frame.ToLocal(xyz + 3 * points[i]);
+    double p[3];
+    xyz.Get(points[i], p);
+    q[i] = frame.ToLocal(p);
   }
   KeyPointOptions options;
   options.Alpha = rule.Alpha;

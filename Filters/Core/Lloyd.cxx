@@ -15,7 +15,7 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 
 } // namespace
 
-void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame& frame,
+void RelaxCell(Coordinates xyz, const Index* points, Index n, const CellFrame& frame,
   const std::vector<Index>& exclude, Index firstSample, Index fixedCount, Index budget,
   int iterations, SampleSet& samples, CellScratch& scratch)
 {
@@ -32,7 +32,9 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     scratch.Subset.clear();
     for (Index i = 0; i < n; ++i)
     {
-      scratch.Local[i] = frame.ToLocal(xyz + 3 * points[i]);
+      double p[3];
+      xyz.Get(points[i], p);
+      scratch.Local[i] = frame.ToLocal(p);
       if (std::find(exclude.begin(), exclude.end(), points[i]) == exclude.end())
       {
         scratch.Subset.push_back(i);
@@ -54,7 +56,9 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
   auto lower = [&](const double* seed) {
     for (Index i = 0; i < n; ++i)
     {
-      scratch.Distance[i] = std::min(scratch.Distance[i], SquaredDistance(xyz + 3 * points[i], seed));
+      double p[3];
+      xyz.Get(points[i], p);
+      scratch.Distance[i] = std::min(scratch.Distance[i], SquaredDistance(p, seed));
     }
   };
   for (Index s = 0; s < fixedCount; ++s)
@@ -71,7 +75,9 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
       double best = Infinity;
       for (Index i = 0; i < n; ++i)
       {
-        const double d = SquaredDistance(xyz + 3 * points[i], centre);
+        double p[3];
+        xyz.Get(points[i], p);
+        const double d = SquaredDistance(p, centre);
         if (d < best)
         {
           best = d;
@@ -89,7 +95,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
         }
       }
     }
-    std::copy(xyz + 3 * points[pick], xyz + 3 * points[pick] + 3, pos + 3 * s);
+    xyz.Get(points[pick], pos + 3 * s);
     lower(pos + 3 * s);
   }
   // Lloyd iterations inside the cell, fixed samples fixed.
@@ -100,7 +106,8 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
     scratch.Count.assign(static_cast<std::size_t>(budget), 0);
     for (Index i = 0; i < n; ++i)
     {
-      const double* p = xyz + 3 * points[i];
+      double p[3];
+      xyz.Get(points[i], p);
       Index best = 0;
       double bestD = SquaredDistance(p, pos);
       for (Index s = 1; s < budget; ++s)
@@ -131,7 +138,7 @@ void RelaxCell(const double* xyz, const Index* points, Index n, const CellFrame&
   }
 }
 
-void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+void MoveToCentroids(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const PointArray<SampleId>& assign, SampleSet& samples, const Execution& execution)
 {
   // The points assigned to a cell's samples lie in its ring (the assignment
@@ -193,7 +200,8 @@ void MoveToCentroids(const double* xyz, const CellGrid& grid, const CellNeighbor
         const Index s = assign[i] - firstSample;
         if (s >= 0 && s < owned)
         {
-          const double* p = xyz + 3 * grid.PointAt(i);
+          double p[3];
+          xyz.Get(grid.PointAt(i), p);
           ++count[s];
           for (int a = 0; a < 3; ++a)
           {

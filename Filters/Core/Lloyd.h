@@ -75,13 +75,13 @@ struct VTKASMFILTERS_EXPORT CellScratch
   std::vector<Index> Subset;
   LocalPoints Local;
 };
-VTKASMFILTERS_EXPORT void RelaxCell(const double* xyz, const Index* points, Index n,
+VTKASMFILTERS_EXPORT void RelaxCell(Coordinates xyz, const Index* points, Index n,
   const CellFrame& frame, const std::vector<Index>& exclude, Index firstSample, Index fixedCount,
   Index budget, int iterations, SampleSet& samples, CellScratch& scratch);
 
 /// One Lloyd step across cell borders: every free sample moves to the
 /// centroid of the points assigned to it (unchanged when it has none).
-VTKASMFILTERS_EXPORT void MoveToCentroids(const double* xyz, const CellGrid& grid,
+VTKASMFILTERS_EXPORT void MoveToCentroids(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, SampleSet& samples,
   const Execution& execution);
 

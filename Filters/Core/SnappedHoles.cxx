@@ -13,20 +13,20 @@ namespace asmcore
 {
 namespace
 {
-// The squared distance from p to the farthest of the points xyz[3 * first[m]].
-double SquaredReach(const double* xyz, const Index* first, Index n, const double p[3])
+// The squared distance from p to the farthest of the points xyz[first[m]].
+double SquaredReach(Coordinates xyz, const Index* first, Index n, const double p[3])
 {
   double r = 0.0;
   for (Index m = 0; m < n; ++m)
   {
-    r = std::max(r, SquaredDistance(xyz + 3 * first[m], p));
+    r = std::max(r, SquaredDistance(xyz.At(first[m]).data(), p));
   }
   return r;
 }
 } // namespace
 
 double MinimaxCentre(
-  const double* xyz, const Index* first, Index n, const double start[3], double centre[3])
+  Coordinates xyz, const Index* first, Index n, const double start[3], double centre[3])
 {
   constexpr int Steps = 64;
   double c[3] = { start[0], start[1], start[2] };
@@ -42,7 +42,7 @@ double MinimaxCentre(
     double farD = -1.0;
     for (Index m = 0; m < n; ++m)
     {
-      const double d = SquaredDistance(xyz + 3 * first[m], c);
+      const double d = SquaredDistance(xyz.At(first[m]).data(), c);
       if (d > farD)
       {
         farD = d;
@@ -54,7 +54,8 @@ double MinimaxCentre(
       best = farD;
       std::copy_n(c, 3, centre);
     }
-    const double* f = xyz + 3 * first[far];
+    double f[3];
+    xyz.Get(first[far], f);
     for (int a = 0; a < 3; ++a)
     {
       c[a] += (f[a] - c[a]) / static_cast<double>(step + 1);
@@ -63,17 +64,17 @@ double MinimaxCentre(
   return best;
 }
 
-void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, SimplifyResult& result,
-  const Execution& execution)
+void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart, const Index* members,
+  const std::vector<char>& snapped, double* positions, const Execution& execution)
 {
-  const Index count = static_cast<Index>(result.Samples.size());
+  const Index count = static_cast<Index>(snapped.size());
+  auto membersOf = [&](Index s) { return members + memberStart[s]; };
+  auto sizeOf = [&](Index s) { return memberStart[s + 1] - memberStart[s]; };
   std::vector<double> reach(static_cast<std::size_t>(count), 0.0); // squared, from the sample
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
-      const Sample& sample = result.Samples[s];
-      reach[s] = SquaredReach(
-        xyz, result.Members.data() + sample.MemberBegin, sample.ClusterSize, sample.Position);
+      reach[s] = SquaredReach(xyz, membersOf(s), sizeOf(s), positions + 3 * s);
     }
   });
   double limit = 0.0; // squared largest hole so far
@@ -116,9 +117,9 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
     execution.Run(begin, end, [&](Index b, Index e) {
       for (Index k = b; k < e; ++k)
       {
-        const Sample& sample = result.Samples[order[k]];
-        radius[k - begin] = MinimaxCentre(xyz, result.Members.data() + sample.MemberBegin,
-          sample.ClusterSize, sample.Position, centre.data() + 3 * (k - begin));
+        const Index s = order[k];
+        radius[k - begin] = MinimaxCentre(
+          xyz, membersOf(s), sizeOf(s), positions + 3 * s, centre.data() + 3 * (k - begin));
       }
     });
     for (Index k = begin; k < end; ++k)
@@ -143,9 +144,8 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
       {
         continue;
       }
-      Sample& sample = result.Samples[s];
-      const Index* first = result.Members.data() + sample.MemberBegin;
-      const double* from = sample.Position;
+      double* position = positions + 3 * s;
+      const double* from = position;
       const double* to = moves[k].second.data();
       auto at = [&](double t, double p[3]) {
         for (int a = 0; a < 3; ++a)
@@ -156,7 +156,7 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
       auto reachAt = [&](double t) {
         double p[3];
         at(t, p);
-        return SquaredReach(xyz, first, sample.ClusterSize, p);
+        return SquaredReach(xyz, membersOf(s), sizeOf(s), p);
       };
       double lo = 0.0, hi = 1.0; // reach above the bound at lo, within it at hi
       for (int step = 0; step < 20; ++step)
@@ -166,7 +166,7 @@ void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped, Simp
       }
       double p[3];
       at(hi, p);
-      std::copy_n(p, 3, sample.Position);
+      std::copy_n(p, 3, position);
     }
   });
 }

@@ -22,20 +22,23 @@
 
 namespace asmcore
 {
-/// An approximate minimax centre of the points xyz[3 * first[m]], m in
+/// An approximate minimax centre of the points xyz[first[m]], m in
 /// [0, n): 64 Badoiu-Clarkson steps from `start` towards the farthest point,
 /// the best centre seen kept (in `centre`). Returns its squared radius (the
 /// squared distance to the farthest point), at least the exact one's.
 VTKASMFILTERS_EXPORT double MinimaxCentre(
-  const double* xyz, const Index* first, Index n, const double start[3], double centre[3]);
+  Coordinates xyz, const Index* first, Index n, const double start[3], double centre[3]);
 
-/// Moves the samples of `result` flagged in `snapped` (input-point samples
-/// that may leave their point) whose cluster (their members) reaches past
-/// the bound towards their minimax centre, just far enough (see above).
-/// Clusters are taken widest first, so that only those need a centre; the
-/// result does not depend on the thread count.
-VTKASMFILTERS_EXPORT void BoundSnappedHoles(const double* xyz, const std::vector<char>& snapped,
-  SimplifyResult& result, const Execution& execution = {});
+/// Moves the samples flagged in `snapped` (input-point samples that may
+/// leave their point) whose cluster reaches past the bound towards their
+/// minimax centre, just far enough (see above). Sample s (of snapped.size())
+/// is at positions[3 s, 3 s + 3) and its cluster is the points xyz[m] for m
+/// in members[memberStart[s], memberStart[s + 1]). Clusters are taken widest
+/// first, so that only those need a centre; the result does not depend on
+/// the thread count.
+VTKASMFILTERS_EXPORT void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart,
+  const Index* members, const std::vector<char>& snapped, double* positions,
+  const Execution& execution = {});
 } // namespace asmcore
 
 #endif
