@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkASMSimplify.h"
 
+#include "Core/CellNeighbors.h"
 #include "Core/Grid.h"
 #include "vtkASMDistributed.h"
 #include "Core/Neighbors.h"
@@ -293,7 +294,16 @@ int vtkASMSimplify::RequestData(
   }
   if (result.Aborted)
   {
-    vtkWarningMacro(<< "Aborted: the output is empty.");
+    if (this->GetAbortExecute())
+    {
+      vtkWarningMacro(<< "Aborted: the output is empty.");
+    }
+    else // (the core's own limits; the samples' is checked above)
+    {
+      vtkErrorMacro(<< "The grid has more than " << asmcore::CellNeighborTable::MaxTableCells
+                    << " non-empty cells, more than the feature-preserving mode can number; "
+                       "use a larger CellSize or the paper mode (Mode = PAPER). The output is empty.");
+    }
     return 1;
   }
   if (this->CellSize > 0.0 && result.CellSize > this->CellSize)

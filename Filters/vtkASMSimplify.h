@@ -143,7 +143,8 @@ public:
    * exactly as read in ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING adds
    * the fixes below, each of which can be switched off on its own. The
    * options below the Mode are ignored in PAPER mode. FEATURE_PRESERVING
-   * keeps at most 2^31 - 1 output points (an error above that).
+   * keeps at most 2^31 - 1 output points and non-empty grid cells (an error
+   * above that).
    */
   vtkSetClampMacro(Mode, int, FEATURE_PRESERVING, PAPER);
   vtkGetMacro(Mode, int);
