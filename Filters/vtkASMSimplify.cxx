@@ -411,6 +411,7 @@ int vtkASMSimplify::RequestData(
       std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
       std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
     }
+    asmcore::UnwrittenArray<asmcore::Sample>().swap(result.Samples); // room for the tree
     const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
     if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
           orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95, threads)))
