@@ -14,11 +14,13 @@ namespace
 // Squared distance, always evaluated in this order: the lower bounds of the
 // search (built from the same per-axis differences) then never exceed it,
 // even after rounding, so no tie is pruned by mistake.
-inline double SquaredDistance(const double a[3], const double b[3])
+// (A float entry is widened first: the same value as in a double entry.)
+template <typename Real>
+inline double SquaredDistance(const Real a[3], const double b[3])
 {
-  const double dx = a[0] - b[0];
-  const double dy = a[1] - b[1];
-  const double dz = a[2] - b[2];
+  const double dx = static_cast<double>(a[0]) - b[0];
+  const double dy = static_cast<double>(a[1]) - b[1];
+  const double dz = static_cast<double>(a[2]) - b[2];
   return dx * dx + dy * dy + dz * dz;
 }
 
@@ -135,8 +137,9 @@ void Unzip(std::vector<std::pair<double, Index>>& pairs, std::vector<Index>& ids
 }
 } // namespace
 
+template <typename E>
 template <typename Result>
-void Neighbors::Search(const double p[3], Result& result) const
+void BasicNeighbors<E>::Search(const double p[3], Result& result) const
 {
   // Per-axis distance from p to the box of the current node.
   double off[3];
@@ -153,8 +156,9 @@ void Neighbors::Search(const double p[3], Result& result) const
   }
 }
 
+template <typename E>
 template <typename Result>
-void Neighbors::SearchNode(
+void BasicNeighbors<E>::SearchNode(
   Index index, const double p[3], double rd, double off[3], Result& result) const
 {
   const Node& node = this->Nodes[index];
@@ -205,7 +209,8 @@ void Neighbors::SearchNode(
   off[a] = saved;
 }
 
-void Neighbors::KNearest(
+template <typename E>
+void BasicNeighbors<E>::KNearest(
   const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
   ids.clear();
@@ -238,7 +243,8 @@ void Neighbors::KNearest(
   Unzip(result.Heap, ids, &sqDist);
 }
 
-NearestPoint Neighbors::Nearest(const double p[3]) const
+template <typename E>
+NearestPoint BasicNeighbors<E>::Nearest(const double p[3]) const
 {
   NearestPoint nearest;
   nearest.Distance = std::numeric_limits<double>::infinity();
@@ -255,7 +261,8 @@ NearestPoint Neighbors::Nearest(const double p[3]) const
   return nearest;
 }
 
-void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) const
+template <typename E>
+void BasicNeighbors<E>::Radius(const double p[3], double r, std::vector<Index>& ids) const
 {
   std::vector<double>* noDistances = nullptr;
   ids.clear();
@@ -268,7 +275,8 @@ void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) con
   Unzip(result.Found, ids, noDistances);
 }
 
-void Neighbors::Radius(
+template <typename E>
+void BasicNeighbors<E>::Radius(
   const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
   ids.clear();
@@ -280,5 +288,27 @@ void Neighbors::Radius(
   RadiusSet result(r * r);
   this->Search(p, result);
   Unzip(result.Found, ids, &sqDist);
+}
+
+void Neighbors::KNearest(
+  const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
+{
+  this->IsCompact ? this->Compact.KNearest(p, k, ids, sqDist) : this->Wide.KNearest(p, k, ids, sqDist);
+}
+
+NearestPoint Neighbors::Nearest(const double p[3]) const
+{
+  return this->IsCompact ? this->Compact.Nearest(p) : this->Wide.Nearest(p);
+}
+
+void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) const
+{
+  this->IsCompact ? this->Compact.Radius(p, r, ids) : this->Wide.Radius(p, r, ids);
+}
+
+void Neighbors::Radius(
+  const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
+{
+  this->IsCompact ? this->Compact.Radius(p, r, ids, sqDist) : this->Wide.Radius(p, r, ids, sqDist);
 }
 } // namespace asmcore

@@ -5,9 +5,10 @@
  * key point error and the curvature estimate, which look up neighbourhoods
  * in the original cloud.
  *
- * Layout: the points (coordinates and id, 32 bytes each) are copied into one
- * array, reordered so that every node covers a contiguous range of it; the
- * nodes live in a second flat array (left child right after its parent). No
+ * Layout: the points (coordinates and id: 32 bytes each, 16 for a float
+ * cloud, see Neighbors) are copied into one array, reordered so that every
+ * node covers a contiguous range of it; the nodes live in a second flat
+ * array (left child right after its parent). No
  * per-node allocation, and a leaf is scanned in a single sweep of memory.
  * The tree does not refer to the caller's arrays after Build().
  *
@@ -38,9 +39,9 @@
  *  - Build: O(N log N) time (about log_256(N / LeafSize) + 1 counting passes
  *    per point, all but the first in cache; the buckets' subtrees are built
  *    in parallel; the tree is the same whatever the thread count). Memory:
- *    32 N bytes of points + about N / 10 nodes of 56 bytes (under 40 bytes
- *    per point in all), and while building, a spare array of at most
- *    SpareSize points per thread.
+ *    32 N bytes of points (16 N for a float cloud) + about N / 10 nodes of
+ *    56 bytes (under 40 bytes per point in all, 24 for a float cloud), and
+ *    while building, a spare array of at most SpareSize points per thread.
  *  - KNearest / Nearest: O(log N + k log k) expected for points sampled
  *    from a surface or volume; O(N log N) when k >= N (all points, sorted).
  *  - Radius: O(log N + m log m) expected.
@@ -59,6 +60,8 @@
 
 #include "Common.h"
 
+#include <cstdint>
+
 namespace asmcore
 {
 /// One nearest point: its id and (not squared) distance.
@@ -68,10 +71,9 @@ struct VTKASMFILTERS_EXPORT NearestPoint
   double Distance = 0.0; ///< +infinity when Id == -1
 };
 
-/// A static kd-tree over the points xyz[3*id], id in ids.
-class VTKASMFILTERS_EXPORT Neighbors
+/// The limits of the tree (Neighbors and its two layouts).
+struct VTKASMFILTERS_EXPORT NeighborsLimits
 {
-public:
   /// Most points in a leaf (ranges of coincident points excepted, and
   /// ranges at MaxDepth); a grid split leaves 1 to LeafSize points per leaf.
   /// Of 24 to 128, 64 built fastest and answered k = 20 queries about as
@@ -83,48 +85,41 @@ public:
   static constexpr int MaxDepth = 96;
   /// Ranges of at most this many points are split through a spare array.
   static constexpr Index SpareSize = Index(1) << 16;
+};
 
-  /// An empty tree: every query returns nothing.
-  Neighbors() = default;
-  /// Same as Build(xyz, ids, execution).
-  Neighbors(Coordinates xyz, IdView ids, const Execution& execution = {});
+/// One point of a tree: a copy of its coordinates and its id. Wide: doubles
+/// and 64-bit ids (32 bytes); compact: the floats of a float cloud and
+/// 32-bit ids (16 bytes), for a cloud whose ids all fit.
+struct WideEntry
+{
+  double P[3];
+  Index Id;
+};
+struct CompactEntry
+{
+  float P[3];
+  std::int32_t Id;
+};
 
-  /// (Re)build the tree over the points xyz[3*id], id in ids, which must be
-  /// finite (see FinitePointIds). Ids need not be sorted or contiguous;
-  /// listing an id twice makes two (coincident) entries. The tree is built
-  /// level by level, the nodes of a level in parallel (`execution`); it is
-  /// the same whatever the thread count.
-  void Build(Coordinates xyz, IdView ids, const Execution& execution = {});
-
-  /// Number of points in the tree.
+/// The kd-tree itself, over entries of one layout (see Neighbors, which
+/// picks the layout; the answers are the same in both, as the distances are
+/// computed in double from the same numbers).
+template <typename EntryType>
+class BasicNeighbors : public NeighborsLimits
+{
+public:
+  using Entry = EntryType;
+  void Build(Coordinates xyz, IdView ids, const Execution& execution);
   Index Size() const { return static_cast<Index>(this->Points.size()); }
   bool Empty() const { return this->Points.empty(); }
-
-  /// The min(k, Size()) points nearest p, sorted by squared distance then by
-  /// id, in `ids` and `sqDist` (resized; their capacity is reused, so a
-  /// thread querying in a loop does not allocate). k <= 0, an empty tree or
-  /// a non-finite p give empty results.
   void KNearest(
     const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const;
-
-  /// The point nearest p (ties: the smaller id).
   NearestPoint Nearest(const double p[3]) const;
-
-  /// The points within distance r of p (squared distance <= r * r), sorted
-  /// by squared distance then id. r < 0, an empty tree or a non-finite p or
-  /// r give an empty result.
   void Radius(const double p[3], double r, std::vector<Index>& ids) const;
-  /// Same, with the squared distances.
   void Radius(
     const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const;
 
 private:
-  /// One point of the tree: a copy of its coordinates and its id.
-  struct Entry
-  {
-    double P[3];
-    Index Id;
-  };
   /// A node: a contiguous range of Points. Inner nodes split it in two
   /// contiguous parts along Axis, every left coordinate <= LowMax and every
   /// right one >= HighMin; the left child is the next node, the right child
@@ -163,6 +158,54 @@ private:
   std::vector<Node> Nodes; ///< Nodes[0] is the root (when not empty)
   double BoxMin[3] = { 0, 0, 0 };
   double BoxMax[3] = { 0, 0, 0 };
+};
+
+/// A static kd-tree over the points xyz[id], id in ids. A float cloud whose
+/// ids fit in 32 bits gets the compact layout (16 bytes per point instead
+/// of 32); the answers do not depend on the layout.
+class VTKASMFILTERS_EXPORT Neighbors : public NeighborsLimits
+{
+public:
+  /// An empty tree: every query returns nothing.
+  Neighbors() = default;
+  /// Same as Build(xyz, ids, execution).
+  Neighbors(Coordinates xyz, IdView ids, const Execution& execution = {});
+
+  /// (Re)build the tree over the points xyz[id], id in ids, which must be
+  /// finite (see FinitePointIds). Ids need not be sorted or contiguous;
+  /// listing an id twice makes two (coincident) entries. The tree is built
+  /// level by level, the nodes of a level in parallel (`execution`); it is
+  /// the same whatever the thread count.
+  void Build(Coordinates xyz, IdView ids, const Execution& execution = {});
+
+  /// Number of points in the tree.
+  Index Size() const { return this->IsCompact ? this->Compact.Size() : this->Wide.Size(); }
+  bool Empty() const { return this->Size() == 0; }
+  /// Whether the tree holds the compact layout (floats and 32-bit ids).
+  bool HasCompactLayout() const { return this->IsCompact; }
+
+  /// The min(k, Size()) points nearest p, sorted by squared distance then by
+  /// id, in `ids` and `sqDist` (resized; their capacity is reused, so a
+  /// thread querying in a loop does not allocate). k <= 0, an empty tree or
+  /// a non-finite p give empty results.
+  void KNearest(
+    const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const;
+
+  /// The point nearest p (ties: the smaller id).
+  NearestPoint Nearest(const double p[3]) const;
+
+  /// The points within distance r of p (squared distance <= r * r), sorted
+  /// by squared distance then id. r < 0, an empty tree or a non-finite p or
+  /// r give an empty result.
+  void Radius(const double p[3], double r, std::vector<Index>& ids) const;
+  /// Same, with the squared distances.
+  void Radius(
+    const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const;
+
+private:
+  BasicNeighbors<WideEntry> Wide;
+  BasicNeighbors<CompactEntry> Compact;
+  bool IsCompact = false;
 };
 } // namespace asmcore
 

@@ -21,7 +21,8 @@ Neighbors::Neighbors(Coordinates xyz, IdView ids, const Execution& execution)
 }
 
 /// A range of points waiting to become a node, with its bounds.
-struct Neighbors::Task
+template <typename E>
+struct BasicNeighbors<E>::Task
 {
   Index Begin = 0;
   Index End = 0;
@@ -35,7 +36,8 @@ struct Neighbors::Task
 /// node; children are local indices) whose leaves are either leaves of the
 /// tree or ranges left to split further (Pending >= 0: the index of their
 /// task in Children).
-struct Neighbors::Piece
+template <typename E>
+struct BasicNeighbors<E>::Piece
 {
   struct Local
   {
@@ -50,23 +52,44 @@ struct Neighbors::Piece
 
 namespace
 {
+// The entry of point `id`: its numbers as they are (a compact entry is
+// built from a float cloud only, see Neighbors::Build).
+template <typename Entry>
+Entry LoadEntry(Coordinates xyz, Index id);
+template <>
+WideEntry LoadEntry<WideEntry>(Coordinates xyz, Index id)
+{
+  WideEntry e;
+  xyz.Get(id, e.P);
+  e.Id = id;
+  return e;
+}
+template <>
+CompactEntry LoadEntry<CompactEntry>(Coordinates xyz, Index id)
+{
+  CompactEntry e;
+  std::copy_n(xyz.Floats + 3 * id, 3, e.P);
+  e.Id = static_cast<std::int32_t>(id);
+  return e;
+}
+
 // Bounds and smallest id of entries [begin, end) (not empty), into lo, hi.
 template <typename Entry>
 void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], double hi[3], Index& minId)
 {
   for (int a = 0; a < 3; ++a)
   {
-    lo[a] = hi[a] = points[begin].P[a];
+    lo[a] = hi[a] = static_cast<double>(points[begin].P[a]);
   }
-  minId = points[begin].Id;
+  minId = static_cast<Index>(points[begin].Id);
   for (Index i = begin + 1; i < end; ++i)
   {
     for (int a = 0; a < 3; ++a)
     {
-      lo[a] = std::min(lo[a], points[i].P[a]);
-      hi[a] = std::max(hi[a], points[i].P[a]);
+      lo[a] = std::min(lo[a], static_cast<double>(points[i].P[a]));
+      hi[a] = std::max(hi[a], static_cast<double>(points[i].P[a]));
     }
-    minId = std::min(minId, points[i].Id);
+    minId = std::min(minId, static_cast<Index>(points[i].Id));
   }
 }
 // Partitions entries [begin, end) (Hoare) into those less than `pivot`
@@ -87,10 +110,10 @@ Index PartitionWithBounds(
   auto add = [&](int part, const Entry& e) {
     for (int a = 0; a < 3; ++a)
     {
-      lo[part][a] = std::min(lo[part][a], e.P[a]);
-      hi[part][a] = std::max(hi[part][a], e.P[a]);
+      lo[part][a] = std::min(lo[part][a], static_cast<double>(e.P[a]));
+      hi[part][a] = std::max(hi[part][a], static_cast<double>(e.P[a]));
     }
-    minId[part] = std::min(minId[part], e.Id);
+    minId[part] = std::min(minId[part], static_cast<Index>(e.Id));
   };
   Index i = begin, j = end - 1;
   for (;;)
@@ -193,12 +216,14 @@ struct SplitPlan
   int Buckets() const { return 1 << this->Used; }
   /// The bucket of p (inside the box): the cell index grows with each
   /// coordinate, so a split's low half lies strictly below its high half.
-  int BucketOf(const double p[3]) const
+  template <typename Real>
+  int BucketOf(const Real p[3]) const
   {
     int b = 0;
     for (int a = 0; a < 3; ++a)
     {
-      const double cell = std::min(this->Top[a], (p[a] - this->Lo[a]) * this->Scale[a]);
+      const double cell =
+        std::min(this->Top[a], (static_cast<double>(p[a]) - this->Lo[a]) * this->Scale[a]);
       b |= this->Spread[a][static_cast<std::size_t>(cell)];
     }
     return b;
@@ -235,7 +260,8 @@ Index LargestBucket(const BucketSet& buckets)
 
 /// Per-thread scratch of the build: reused, so that the many small ranges
 /// near the leaves allocate nothing.
-struct Neighbors::Scratch
+template <typename E>
+struct BasicNeighbors<E>::Scratch
 {
   SplitPlan Plan;
   BucketSet Buckets;
@@ -244,7 +270,8 @@ struct Neighbors::Scratch
   std::vector<Entry> Spare;         // the range, bucket by bucket, before it is copied back
 };
 
-void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
+template <typename E>
+void BasicNeighbors<E>::Build(Coordinates xyz, IdView ids, const Execution& execution)
 {
   this->Points.clear();
   this->Nodes.clear();
@@ -287,12 +314,7 @@ void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
         xyz.Get(ids[i], p);
         return plan.BucketOf(p);
       },
-      [&](Index i) {
-        Entry entry;
-        xyz.Get(ids[i], entry.P);
-        entry.Id = ids[i];
-        return entry;
-      },
+      [&](Index i) { return LoadEntry<Entry>(xyz, ids[i]); },
       buckets.Start, this->Points, execution);
   }
   else
@@ -301,8 +323,7 @@ void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
     execution.Run(0, n, [&](Index b, Index e) {
       for (Index i = b; i < e; ++i)
       {
-        xyz.Get(ids[i], this->Points[i].P);
-        this->Points[i].Id = ids[i];
+        this->Points[i] = LoadEntry<Entry>(xyz, ids[i]);
       }
     });
   }
@@ -374,7 +395,8 @@ void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
   });
 }
 
-void Neighbors::BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& scratch)
+template <typename E>
+void BasicNeighbors<E>::BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& scratch)
 {
   Piece& piece = scratch.Pieces[static_cast<std::size_t>(task.Depth)];
   piece.Nodes.clear();
@@ -384,11 +406,12 @@ void Neighbors::BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& 
     [&](int k) { this->BuildSubtree(piece.Children[static_cast<std::size_t>(k)], out, scratch); });
 }
 
+template <typename E>
 template <typename Pending>
-Index Neighbors::Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending)
+Index BasicNeighbors<E>::Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending)
 {
   const auto self = static_cast<Index>(out.size());
-  const Piece::Local& node = piece.Nodes[static_cast<std::size_t>(local)];
+  const typename Piece::Local& node = piece.Nodes[static_cast<std::size_t>(local)];
   if (node.Pending >= 0)
   {
     pending(node.Pending);
@@ -404,14 +427,16 @@ Index Neighbors::Emit(const Piece& piece, int local, std::vector<Node>& out, con
   return self;
 }
 
-bool Neighbors::Splits(const Task& task)
+template <typename E>
+bool BasicNeighbors<E>::Splits(const Task& task)
 {
   const bool coincident =
     task.Lo[0] == task.Hi[0] && task.Lo[1] == task.Hi[1] && task.Lo[2] == task.Hi[2];
   return !coincident && task.End - task.Begin > LeafSize && task.Depth < MaxDepth;
 }
 
-int Neighbors::AddChild(const Task& task, Index begin, Index end, const double lo[3],
+template <typename E>
+int BasicNeighbors<E>::AddChild(const Task& task, Index begin, Index end, const double lo[3],
   const double hi[3], Index minId, Piece& piece)
 {
   Task child;
@@ -435,7 +460,8 @@ int Neighbors::AddChild(const Task& task, Index begin, Index end, const double l
   return local;
 }
 
-Neighbors::Node Neighbors::Leaf(const Task& task)
+template <typename E>
+typename BasicNeighbors<E>::Node BasicNeighbors<E>::Leaf(const Task& task)
 {
   Node node;
   node.Begin = task.Begin;
@@ -451,7 +477,8 @@ Neighbors::Node Neighbors::Leaf(const Task& task)
   return node;
 }
 
-void Neighbors::BuildTask(const Task& task, Piece& piece, Scratch& scratch)
+template <typename E>
+void BasicNeighbors<E>::BuildTask(const Task& task, Piece& piece, Scratch& scratch)
 {
   piece.Nodes.emplace_back();
   if (!Splits(task))
@@ -493,10 +520,10 @@ void Neighbors::BuildTask(const Task& task, Piece& piece, Scratch& scratch)
       ++start[b + 1];
       for (int a = 0; a < 3; ++a)
       {
-        buckets.Lo[3 * b + a] = std::min(buckets.Lo[3 * b + a], e.P[a]);
-        buckets.Hi[3 * b + a] = std::max(buckets.Hi[3 * b + a], e.P[a]);
+        buckets.Lo[3 * b + a] = std::min(buckets.Lo[3 * b + a], static_cast<double>(e.P[a]));
+        buckets.Hi[3 * b + a] = std::max(buckets.Hi[3 * b + a], static_cast<double>(e.P[a]));
       }
-      buckets.MinId[b] = std::min(buckets.MinId[b], e.Id);
+      buckets.MinId[b] = std::min(buckets.MinId[b], static_cast<Index>(e.Id));
     }
     start[0] = begin;
     for (int b = 0; b < count; ++b)
@@ -540,7 +567,8 @@ void Neighbors::BuildTask(const Task& task, Piece& piece, Scratch& scratch)
   this->MedianSplit(task, piece);
 }
 
-void Neighbors::SplitNodes(const Task& task, const Scratch& scratch, Piece& piece)
+template <typename E>
+void BasicNeighbors<E>::SplitNodes(const Task& task, const Scratch& scratch, Piece& piece)
 {
   // The binary nodes over buckets [bl, bh), split on the axis of bit j of
   // the bucket index; node 0 is the task's own (it always splits: no bucket
@@ -597,7 +625,8 @@ void Neighbors::SplitNodes(const Task& task, const Scratch& scratch, Piece& piec
   make(0, plan.Buckets(), 0, 0);
 }
 
-void Neighbors::MedianSplit(const Task& task, Piece& piece)
+template <typename E>
+void BasicNeighbors<E>::MedianSplit(const Task& task, Piece& piece)
 {
   // Split on (coordinate, id) along the longest axis, so that the halves
   // are ordered even when many points share a coordinate: around the median
@@ -650,5 +679,25 @@ void Neighbors::MedianSplit(const Task& task, Piece& piece)
   const int r = this->AddChild(task, mid, end, right.Lo, right.Hi, right.MinId, piece);
   piece.Nodes[0].Left = l;
   piece.Nodes[0].Right = r;
+}
+void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
+{
+  // The compact layout when it holds the same numbers: floats, ids < 2^31.
+  bool compact = xyz.Floats != nullptr;
+  for (Index i = 0; compact && i < static_cast<Index>(ids.size()); ++i)
+  {
+    compact = ids[i] <= std::numeric_limits<std::int32_t>::max();
+  }
+  this->IsCompact = compact;
+  this->Wide = BasicNeighbors<WideEntry>();
+  this->Compact = BasicNeighbors<CompactEntry>();
+  if (compact)
+  {
+    this->Compact.Build(xyz, ids, execution);
+  }
+  else
+  {
+    this->Wide.Build(xyz, ids, execution);
+  }
 }
 } // namespace asmcore

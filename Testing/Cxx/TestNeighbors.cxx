@@ -224,6 +224,61 @@ TEST(Neighbors, RadiusMatchesBruteForce)
   }
 }
 
+// A float cloud (ids below 2^31) gets the compact layout, 16 bytes per
+// point: it must answer exactly what the wide layout answers on the same
+// numbers as doubles (the brute force included).
+TEST(Neighbors, FloatCloudsGetTheCompactLayoutWithTheSameAnswers)
+{
+  unsigned seed = 301;
+  for (bool lattice : { false, true })
+  {
+    for (std::size_t n : { 1, 60, 3000, 20000 })
+    {
+      TestCloud t = MakeCloud(n, n / 4, lattice, ++seed);
+      std::vector<float> floats(t.Points.size());
+      for (std::size_t i = 0; i < floats.size(); ++i)
+      {
+        floats[i] = static_cast<float>(t.Points[i] * 3.1);
+        t.Points[i] = static_cast<double>(floats[i]); // the same numbers, widened
+      }
+      const asmcore::Neighbors compact(floats.data(), t.Ids);
+      const asmcore::Neighbors wide(t.Points.data(), t.Ids);
+      ASSERT_TRUE(compact.HasCompactLayout());
+      ASSERT_FALSE(wide.HasCompactLayout());
+      ASSERT_EQ(compact.Size(), wide.Size());
+      std::vector<Index> ids, wideIds;
+      std::vector<double> d, wideD;
+      for (auto q : MakeQueries(t, lattice, seed))
+      {
+        for (double& x : q)
+        {
+          x *= 3.1;
+        }
+        const std::string what = "n=" + std::to_string(n) + " lattice=" + std::to_string(lattice);
+        for (int k : { 1, 8, 33, static_cast<int>(t.Ids.size()) + 1 })
+        {
+          compact.KNearest(q.data(), k, ids, d);
+          wide.KNearest(q.data(), k, wideIds, wideD);
+          ExpectSame(BruteForce(t.Points, t.Ids, q.data(), static_cast<std::size_t>(k)), ids, d,
+            what + " k=" + std::to_string(k));
+          ASSERT_EQ(wideIds, ids) << what;
+          ASSERT_EQ(wideD, d) << what;
+        }
+        const asmcore::NearestPoint a = compact.Nearest(q.data()), b = wide.Nearest(q.data());
+        ASSERT_EQ(b.Id, a.Id) << what;
+        ASSERT_EQ(b.Distance, a.Distance) << what;
+        for (double r : { 0.05, 0.4, 3.0 })
+        {
+          compact.Radius(q.data(), r * (lattice ? 4.0 : 1.0), ids, d);
+          wide.Radius(q.data(), r * (lattice ? 4.0 : 1.0), wideIds, wideD);
+          ASSERT_EQ(wideIds, ids) << what << " r=" << r;
+          ASSERT_EQ(wideD, d) << what << " r=" << r;
+        }
+      }
+    }
+  }
+}
+
 TEST(Neighbors, BadArgumentsGiveEmptyResults)
 {
   const TestCloud t = MakeCloud(100, 0, false, 5);
