@@ -209,23 +209,27 @@ void BasicNeighbors<E>::SearchNode(
   off[a] = saved;
 }
 
-template <typename E>
-void BasicNeighbors<E>::KNearest(
-  const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
+namespace
+{
+// The queries, on a tree of either layout.
+template <typename Tree>
+void KNearestIn(const Tree& tree, const double p[3], int k, std::vector<Index>& ids,
+  std::vector<double>& sqDist)
 {
   ids.clear();
   sqDist.clear();
-  if (k <= 0 || this->Points.empty() || !Finite(p))
+  if (k <= 0 || tree.Empty() || !Finite(p))
   {
     return;
   }
-  if (static_cast<Index>(k) >= this->Size())
+  if (static_cast<Index>(k) >= tree.Size())
   {
     // Every point: no tree needed.
-    std::vector<std::pair<double, Index>> all(this->Points.size());
+    const auto& entries = tree.Entries();
+    std::vector<std::pair<double, Index>> all(entries.size());
     for (std::size_t i = 0; i < all.size(); ++i)
     {
-      all[i] = { SquaredDistance(this->Points[i].P, p), this->Points[i].Id };
+      all[i] = { SquaredDistance(entries[i].P, p), entries[i].Id };
     }
     Unzip(all, ids, &sqDist);
     return;
@@ -235,80 +239,73 @@ void BasicNeighbors<E>::KNearest(
     ids.resize(static_cast<std::size_t>(k));
     sqDist.resize(static_cast<std::size_t>(k));
     SortedKnn result(k, ids.data(), sqDist.data());
-    this->Search(p, result);
+    tree.Search(p, result);
     return; // k < Size(): the result is full
   }
   HeapKnn result(k);
-  this->Search(p, result);
+  tree.Search(p, result);
   Unzip(result.Heap, ids, &sqDist);
 }
 
-template <typename E>
-NearestPoint BasicNeighbors<E>::Nearest(const double p[3]) const
+template <typename Tree>
+NearestPoint NearestIn(const Tree& tree, const double p[3])
 {
   NearestPoint nearest;
   nearest.Distance = std::numeric_limits<double>::infinity();
-  if (this->Points.empty() || !Finite(p))
+  if (tree.Empty() || !Finite(p))
   {
     return nearest;
   }
   Index id = -1;
   double d = 0.0;
   SortedKnn result(1, &id, &d);
-  this->Search(p, result);
+  tree.Search(p, result);
   nearest.Id = id;
   nearest.Distance = std::sqrt(d);
   return nearest;
 }
 
-template <typename E>
-void BasicNeighbors<E>::Radius(const double p[3], double r, std::vector<Index>& ids) const
+template <typename Tree>
+void RadiusIn(const Tree& tree, const double p[3], double r, std::vector<Index>& ids,
+  std::vector<double>* sqDist)
 {
-  std::vector<double>* noDistances = nullptr;
   ids.clear();
-  if (this->Points.empty() || !Finite(p) || !(r >= 0.0) || !std::isfinite(r))
+  if (sqDist)
+  {
+    sqDist->clear();
+  }
+  if (tree.Empty() || !Finite(p) || !(r >= 0.0) || !std::isfinite(r))
   {
     return;
   }
   RadiusSet result(r * r);
-  this->Search(p, result);
-  Unzip(result.Found, ids, noDistances);
+  tree.Search(p, result);
+  Unzip(result.Found, ids, sqDist);
 }
-
-template <typename E>
-void BasicNeighbors<E>::Radius(
-  const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
-{
-  ids.clear();
-  sqDist.clear();
-  if (this->Points.empty() || !Finite(p) || !(r >= 0.0) || !std::isfinite(r))
-  {
-    return;
-  }
-  RadiusSet result(r * r);
-  this->Search(p, result);
-  Unzip(result.Found, ids, &sqDist);
-}
+} // namespace
 
 void Neighbors::KNearest(
   const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->IsCompact ? this->Compact.KNearest(p, k, ids, sqDist) : this->Wide.KNearest(p, k, ids, sqDist);
+  this->IsCompact ? KNearestIn(this->Compact, p, k, ids, sqDist)
+                  : KNearestIn(this->Wide, p, k, ids, sqDist);
 }
 
 NearestPoint Neighbors::Nearest(const double p[3]) const
 {
-  return this->IsCompact ? this->Compact.Nearest(p) : this->Wide.Nearest(p);
+  return this->IsCompact ? NearestIn(this->Compact, p) : NearestIn(this->Wide, p);
 }
 
 void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) const
 {
-  this->IsCompact ? this->Compact.Radius(p, r, ids) : this->Wide.Radius(p, r, ids);
+  this->IsCompact ? RadiusIn(this->Compact, p, r, ids, nullptr)
+                  : RadiusIn(this->Wide, p, r, ids, nullptr);
 }
 
 void Neighbors::Radius(
   const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->IsCompact ? this->Compact.Radius(p, r, ids, sqDist) : this->Wide.Radius(p, r, ids, sqDist);
+  this->IsCompact ? RadiusIn(this->Compact, p, r, ids, &sqDist)
+                  : RadiusIn(this->Wide, p, r, ids, &sqDist);
 }
 } // namespace asmcore

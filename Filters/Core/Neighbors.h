@@ -112,12 +112,11 @@ public:
   void Build(Coordinates xyz, IdView ids, const Execution& execution);
   Index Size() const { return static_cast<Index>(this->Points.size()); }
   bool Empty() const { return this->Points.empty(); }
-  void KNearest(
-    const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const;
-  NearestPoint Nearest(const double p[3]) const;
-  void Radius(const double p[3], double r, std::vector<Index>& ids) const;
-  void Radius(
-    const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const;
+  /// The entries, in tree order.
+  const std::vector<Entry>& Entries() const { return this->Points; }
+  /// Offers the result set (see Neighbors.cxx) every entry it may accept.
+  template <typename Result>
+  void Search(const double p[3], Result& result) const;
 
 private:
   /// A node: a contiguous range of Points. Inner nodes split it in two
@@ -149,8 +148,6 @@ private:
   void BuildSubtree(const Task& task, std::vector<Node>& out, Scratch& scratch);
   template <typename Pending>
   Index Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending);
-  template <typename Result>
-  void Search(const double p[3], Result& result) const;
   template <typename Result>
   void SearchNode(Index node, const double p[3], double rd, double off[3], Result& result) const;
 
