@@ -5,7 +5,6 @@
 
 #include "vtkASMSimplify.h"
 #include "vtkMaskPoints.h"
-#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkVoxelGrid.h"
@@ -320,13 +319,7 @@ Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType)
   mask->SetRandomSeed(1);
   Method m;
   m.Name = randomModeType == 2 ? "vtkMaskPoints strat." : "vtkMaskPoints random";
-  m.Run = [mask](bool keep) {
-    // (VTK 9.2's vtkMaskPoints draws some of its numbers from vtkMath's
-    // global generator, which RandomSeed does not reset: reseeded here, so
-    // its output does not depend on what ran before.)
-    vtkMath::RandomSeed(1);
-    return RunFilter(mask, keep);
-  };
+  m.Run = [mask](bool keep) { return RunFilter(mask, keep); };
   return m;
 }
 } // namespace asmbench
