@@ -298,11 +298,12 @@ int vtkASMSimplify::RequestData(
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");
     }
-    else // (the core's own limits; the samples' is checked above)
+    else // (the core's own limits: 32-bit cell and sample numbers)
     {
       vtkErrorMacro(<< "The grid has more than " << asmcore::CellNeighborTable::MaxTableCells
-                    << " non-empty cells, more than the feature-preserving mode can number; "
-                       "use a larger CellSize or the paper mode (Mode = PAPER). The output is empty.");
+                    << " non-empty cells (or this process more samples), more than the "
+                       "feature-preserving mode can number; use a larger CellSize or the paper "
+                       "mode (Mode = PAPER). The output is empty.");
     }
     return 1;
   }
