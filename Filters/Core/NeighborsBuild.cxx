@@ -683,10 +683,15 @@ void BasicNeighbors<E>::MedianSplit(const Task& task, Piece& piece)
 void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
 {
   // The compact layout when it holds the same numbers: floats, ids < 2^31.
+  const Index most = std::numeric_limits<std::int32_t>::max();
   bool compact = xyz.Floats != nullptr;
-  for (Index i = 0; compact && i < static_cast<Index>(ids.size()); ++i)
+  if (compact && ids.IsIdentity())
   {
-    compact = ids[i] <= std::numeric_limits<std::int32_t>::max();
+    compact = static_cast<Index>(ids.size()) - 1 <= most;
+  }
+  for (Index i = 0; compact && !ids.IsIdentity() && i < static_cast<Index>(ids.size()); ++i)
+  {
+    compact = ids[i] <= most;
   }
   this->IsCompact = compact;
   this->Wide = BasicNeighbors<WideEntry>();
