@@ -290,7 +290,8 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
       capacity.push_back(static_cast<Index>(j - i));
       // The same frame the core computes (same points, same order).
       variation.push_back(asmcore::VariationWeightOf(parameters) != 0.0
-          ? asmcore::ComputeCellFrame(cloud.Xyz.data(), cloud.Ids.data() + i, static_cast<Index>(j - i))
+          ? asmcore::ComputeCellFrame(cloud.Xyz.data(),
+              asmcore::IdView(cloud.Ids.data() + i, static_cast<std::size_t>(j - i)))
               .SurfaceVariation()
           : 0.0);
     }

@@ -213,7 +213,7 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   const Index cells = grid.NumberOfCells();
   std::vector<CellFrame> frames(cells);
   for (Index c = 0; c < cells; ++c)
-    frames[c] = ComputeCellFrame(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
+    frames[c] = ComputeCellFrame(xyz, grid.CellIds(c));
   double t6 = Cpu();
   std::vector<double> share(cells);
   std::vector<Index> capacity(cells);
@@ -230,7 +230,7 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   Index keys = 0;
   for (Index c = 0; c < cells; ++c)
   {
-    KeyClusters kc = FindCellKeyClusters(xyz, grid.CellPoints(c), grid.CellSizeOf(c), frames[c], rule, q);
+    KeyClusters kc = FindCellKeyClusters(xyz, grid.CellIds(c), frames[c], rule, q);
     keys += kc.Key.Size();
   }
   double t8 = Cpu();

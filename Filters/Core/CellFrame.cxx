@@ -38,8 +38,9 @@ Eigen::Vector3d CellFrame::ToLocal(const double p[3]) const
   return this->Axes.transpose() * d;
 }
 
-CellFrame ComputeCellFrame(Coordinates xyz, const Index* ids, Index count)
+CellFrame ComputeCellFrame(Coordinates xyz, IdView ids)
 {
+  const auto count = static_cast<Index>(ids.size());
   CellFrame frame;
   frame.Count = count;
   if (count <= 0)

@@ -30,11 +30,11 @@ struct VTKASMFILTERS_EXPORT CellFrame
   Eigen::Vector3d ToLocal(const double p[3]) const;
 };
 
-/// The PCA frame of the points xyz[ids[i]], i < count. The eigenvector
+/// The PCA frame of the points xyz[ids[i]], i < ids.size(). The eigenvector
 /// signs are fixed (largest component of v0 and v1 positive) so the frame
 /// does not depend on the eigen solver's choices. Coincident or collinear
 /// points give a valid frame with zero eigenvalues.
-VTKASMFILTERS_EXPORT CellFrame ComputeCellFrame(Coordinates xyz, const Index* ids, Index count);
+VTKASMFILTERS_EXPORT CellFrame ComputeCellFrame(Coordinates xyz, IdView ids);
 } // namespace asmcore
 
 #endif

@@ -169,12 +169,16 @@ public:
     using pointer = const Index*;
     using reference = Index;
 
-    Iterator(const Index* first, std::size_t i)
+    Iterator(const Index* first, Index start, std::size_t i)
       : First(first)
+      , Start(start)
       , I(i)
     {
     }
-    Index operator*() const { return this->First ? this->First[this->I] : static_cast<Index>(this->I); }
+    Index operator*() const
+    {
+      return this->First ? this->First[this->I] : this->Start + static_cast<Index>(this->I);
+    }
     Iterator& operator++()
     {
       ++this->I;
@@ -191,6 +195,7 @@ public:
 
   private:
     const Index* First;
+    Index Start;
     std::size_t I;
   };
 
@@ -209,21 +214,25 @@ public:
   {
   }
   /// The ids 0, 1, ..., count - 1, with no list behind them.
-  static IdView Identity(std::size_t count)
+  static IdView Identity(std::size_t count) { return Range(0, count); }
+  /// The ids first, first + 1, ..., first + count - 1 (e.g. the slots of a
+  /// grid cell in slot order), with no list behind them.
+  static IdView Range(Index first, std::size_t count)
   {
-    IdView all;
-    all.Count = count;
-    return all;
+    IdView range;
+    range.Start = first;
+    range.Count = count;
+    return range;
   }
   /// True for Identity() (an empty list is both).
-  bool IsIdentity() const { return !this->Listed; }
+  bool IsIdentity() const { return !this->Listed && this->Start == 0; }
   std::size_t size() const { return this->Count; }
   bool empty() const { return this->Count == 0; }
-  Iterator begin() const { return Iterator(this->List(), 0); }
-  Iterator end() const { return Iterator(this->List(), this->Count); }
+  Iterator begin() const { return Iterator(this->List(), this->Start, 0); }
+  Iterator end() const { return Iterator(this->List(), this->Start, this->Count); }
   Index operator[](std::size_t i) const
   {
-    return this->Listed ? this->First[i] : static_cast<Index>(i);
+    return this->Listed ? this->First[i] : this->Start + static_cast<Index>(i);
   }
 
 private:
@@ -231,6 +240,7 @@ private:
   const Index* List() const { return this->Listed ? this->First : nullptr; }
 
   const Index* First = nullptr;
+  Index Start = 0; ///< (Identity and Range: the first id)
   std::size_t Count = 0;
   bool Listed = false;
 };

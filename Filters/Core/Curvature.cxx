@@ -43,7 +43,7 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   estimate.NumberOfNeighbors = static_cast<int>(count);
 
   // 1-2. PCA frame and oriented normal.
-  const CellFrame frame = ComputeCellFrame(xyz, neighbors, count);
+  const CellFrame frame = ComputeCellFrame(xyz, IdView(neighbors, static_cast<std::size_t>(count)));
   Eigen::Vector3d n = frame.Normal();
   if (orientNormal &&
     n.dot(Eigen::Vector3d(orientNormal[0], orientNormal[1], orientNormal[2])) < 0.0)

@@ -91,10 +91,10 @@ bool IsSparseCellTip(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
 
 std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
-  const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints)
+  const FeatureKeyOptions& options, LocalPoints& q)
 {
   std::vector<FeatureKey> keys;
-  const Index* points = grid.CellPointIds(c, cellPoints);
+  const IdView points = grid.CellIds(c);
   const Index n = grid.CellSizeOf(c);
   if (n < 3)
   {
@@ -120,7 +120,7 @@ std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz, const CellGrid& grid,
     }
     return keys;
   }
-  const KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, options.Rule, q);
+  const KeyClusters kc = FindCellKeyClusters(xyz, points, frame, options.Rule, q);
   if (kc.Flat)
   {
     return keys;

@@ -53,11 +53,10 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 };
 
 /// The key points of cell c, ordered by decreasing prominence (ties: point
-/// id). `q` and `cellPoints` are scratch space (the cell's points in its PCA
-/// frame; its point ids when the grid is in slot order).
+/// id). `q` is scratch space (the cell's points in its PCA frame).
 VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz,
   const CellGrid& grid, const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
-  const FeatureKeyOptions& options, LocalPoints& q, std::vector<Index>& cellPoints);
+  const FeatureKeyOptions& options, LocalPoints& q);
 
 /// A tip alone in a cell too sparse for a frame: whether input point `id` of
 /// cell c is the extreme (IsLocalExtreme) along the direction away from the

@@ -238,10 +238,9 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // 2. Per-cell analysis: PCA frame and key points.
   std::vector<CellFrame> frames(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
-    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
-      frames[c] = ComputeCellFrame(P, grid.CellPointIds(c, cellPoints), grid.CellSizeOf(c));
+      frames[c] = ComputeCellFrame(P, grid.CellIds(c));
     }
   });
   FeatureKeyOptions keyOptions;
@@ -259,10 +258,9 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   std::vector<std::vector<FeatureKey>> keys(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     LocalPoints q;
-    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
-      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q, cellPoints);
+      keys[c] = FindFeatureKeys(P, grid, neighbors, frames[c], c, keyOptions, q);
     }
   });
   if (abort(0.4))
@@ -307,7 +305,6 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   execution.Run(0, cells, [&](Index b, Index e) {
     CellScratch scratch;
     std::vector<Index> exclude;
-    std::vector<Index> cellPoints;
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c];
@@ -326,8 +323,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
         info[first + k].KeyError = key.Error;
         exclude.push_back(key.Point);
       }
-      RelaxCell(P, grid.CellPointIds(c, cellPoints), grid.CellSizeOf(c), frames[c], exclude, first, keyCount,
-        budget[c], parameters.LloydIterations, samples, scratch);
+      RelaxCell(P, grid.CellIds(c), frames[c], exclude, first, keyCount, budget[c],
+        parameters.LloydIterations, samples, scratch);
     }
   });
   // The key points are placed: released (the budgets are in samples.Start),

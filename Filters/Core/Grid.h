@@ -98,22 +98,13 @@ struct VTKASMFILTERS_EXPORT CellGrid
   Index CellSizeOf(Index c) const { return this->CellStart[c + 1] - this->CellStart[c]; }
   /// The point in slot i (Order[i], or i in slot order).
   Index PointAt(Index i) const { return this->SlotOrder ? i : this->Order[i]; }
-  /// The points of cell c (not in slot order: see CellPointIds).
+  /// The points of cell c (not in slot order: see CellIds).
   const Index* CellPoints(Index c) const { return this->Order.data() + this->CellStart[c]; }
-  /// The points of cell c in either order; in slot order they are written
-  /// into `scratch`.
-  const Index* CellPointIds(Index c, std::vector<Index>& scratch) const
+  /// The points of cell c in either order (in slot order, its slots).
+  IdView CellIds(Index c) const
   {
-    if (!this->SlotOrder)
-    {
-      return this->CellPoints(c);
-    }
-    scratch.resize(static_cast<std::size_t>(this->CellSizeOf(c)));
-    for (std::size_t k = 0; k < scratch.size(); ++k)
-    {
-      scratch[k] = this->CellStart[c] + static_cast<Index>(k);
-    }
-    return scratch.data();
+    const auto n = static_cast<std::size_t>(this->CellSizeOf(c));
+    return this->SlotOrder ? IdView::Range(this->CellStart[c], n) : IdView(this->CellPoints(c), n);
   }
 };
 

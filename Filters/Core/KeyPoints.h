@@ -120,11 +120,11 @@ struct VTKASMFILTERS_EXPORT KeyPointRule
 };
 
 /// The key clusters of one grid cell holding the points xyz[points[i]],
-/// i < n, whose PCA frame is `frame`. Fills `q` with the points in the frame
+/// i < points.size(), whose PCA frame is `frame`. Fills `q` with the points in the frame
 /// (q[i] for points[i]). A cell whose extent along v2 is within rounding of
 /// its coordinates (CoordinateEpsilon) is flat.
-VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(Coordinates xyz, const Index* points,
-  Index n, const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
+VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(Coordinates xyz, IdView points,
+  const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
 } // namespace asmcore
 
 #endif

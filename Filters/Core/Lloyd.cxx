@@ -15,10 +15,11 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 
 } // namespace
 
-void RelaxCell(Coordinates xyz, const Index* points, Index n, const CellFrame& frame,
+void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
   const std::vector<Index>& exclude, Index firstSample, Index fixedCount, Index budget,
   int iterations, SampleSet& samples, CellScratch& scratch)
 {
+  const auto n = static_cast<Index>(points.size());
   const Index free = budget - fixedCount;
   if (free <= 0 || n <= 0)
   {

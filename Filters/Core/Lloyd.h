@@ -60,12 +60,14 @@ struct VTKASMFILTERS_EXPORT SampleSet
   Index Size() const { return static_cast<Index>(this->Fixed.size()); }
 };
 
-/// Place the free samples of cell c (slots Start[c] + fixedCount .. Start[c+1];
-/// the fixed ones are already written) by farthest-point seeding from the
-/// fixed samples and `iterations` Lloyd iterations inside the cell. With
-/// iterations == 0 or budget > LargeCellBudget, the free samples are instead the centroids of median
-/// splits in the (v0, v1) plane of the cell's points other than `exclude`
-/// (the literal reading's middle clustering). Scratch vectors are reused.
+/// Place the free samples of a cell whose points are xyz[points[i]] (sample
+/// slots firstSample + fixedCount .. firstSample + budget; the fixed ones
+/// are already written) by farthest-point seeding from the fixed samples and
+/// `iterations` Lloyd iterations inside the cell. With iterations == 0 or
+/// budget > LargeCellBudget, the free samples are instead the centroids of
+/// median splits in the (v0, v1) plane of the cell's points other than
+/// `exclude` (the literal reading's middle clustering). Scratch vectors are
+/// reused.
 struct VTKASMFILTERS_EXPORT CellScratch
 {
   std::vector<double> Distance;
@@ -75,9 +77,9 @@ struct VTKASMFILTERS_EXPORT CellScratch
   std::vector<Index> Subset;
   LocalPoints Local;
 };
-VTKASMFILTERS_EXPORT void RelaxCell(Coordinates xyz, const Index* points, Index n,
-  const CellFrame& frame, const std::vector<Index>& exclude, Index firstSample, Index fixedCount,
-  Index budget, int iterations, SampleSet& samples, CellScratch& scratch);
+VTKASMFILTERS_EXPORT void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
+  const std::vector<Index>& exclude, Index firstSample, Index fixedCount, Index budget,
+  int iterations, SampleSet& samples, CellScratch& scratch);
 
 /// One Lloyd step across cell borders: every free sample moves to the
 /// centroid of the points assigned to it (unchanged when it has none).

@@ -42,10 +42,9 @@ std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
     LocalPoints q;
     for (Index c = b; c < e; ++c)
     {
-      const Index* points = grid.CellPoints(c);
-      const Index n = grid.CellSizeOf(c);
-      const CellFrame frame = ComputeCellFrame(xyz, points, n);
-      const KeyClusters kc = FindCellKeyClusters(xyz, points, n, frame, rule, q);
+      const IdView points = grid.CellIds(c);
+      const CellFrame frame = ComputeCellFrame(xyz, points);
+      const KeyClusters kc = FindCellKeyClusters(xyz, points, frame, rule, q);
       for (Index k = 0; k < kc.Key.Size(); ++k)
       {
         perCell[c].push_back(frame.Centroid + frame.Axes * Centroid(q, kc.Key.Begin(k), kc.Key.End(k)));
@@ -151,8 +150,7 @@ void SurfaceDistances(const double* xyz, IdView ids, const double* surfaceXyz,
         (*plane)[i] = std::sqrt(sq[0]);
         continue;
       }
-      const CellFrame fit =
-        ComputeCellFrame(surfaceXyz, near.data(), static_cast<Index>(near.size()));
+      const CellFrame fit = ComputeCellFrame(surfaceXyz, near);
       (*plane)[i] = std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid));
     }
   });

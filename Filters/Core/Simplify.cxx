@@ -38,13 +38,12 @@ struct Groups
 };
 
 // A cell's points gathered as doubles (floats widened exactly), in the
-// cell's order, with the local slots 0 ... n - 1 that index them: the
-// per-cell steps read them from here (cache-resident) instead of from the
-// scattered input, which needs no double copy of its own.
+// cell's order (local slot i is points[i]; IdView::Identity(n) lists the
+// slots): the per-cell steps read them from here (cache-resident) instead of
+// from the scattered input, which needs no double copy of its own.
 struct CellCoordinates
 {
   std::vector<double> Xyz;
-  std::vector<Index> Slots;
 
   void Gather(Coordinates xyz, const Index* points, Index n)
   {
@@ -53,19 +52,15 @@ struct CellCoordinates
     {
       xyz.Get(points[i], this->Xyz.data() + 3 * i);
     }
-    for (auto k = static_cast<Index>(this->Slots.size()); k < n; ++k)
-    {
-      this->Slots.push_back(k);
-    }
   }
 };
 
 // Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
 // the groups of points that become the cell's samples (appended to `groups`,
-// cleared first). `xyz` and `points` (the cell's input points) order the key
-// clusters for the random choice.
+// cleared first). `xyz` (the cell's points, in the order of q) orders the
+// key clusters for the random choice.
 void CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget, std::uint64_t seed,
-  const double* xyz, const Index* points, Groups& groups)
+  const double* xyz, Groups& groups)
 {
   groups.Clear();
   const Index n = static_cast<Index>(q.size());
@@ -94,8 +89,8 @@ void CombineWithSampling(const LocalPoints& q, KeyClusters& kc, Index budget, st
     std::vector<Index> pick(static_cast<std::size_t>(keyCount));
     std::iota(pick.begin(), pick.end(), Index(0));
     std::sort(pick.begin(), pick.end(), [&](Index a, Index b) {
-      const double* pa = xyz + 3 * points[kc.Extreme[a]];
-      const double* pb = xyz + 3 * points[kc.Extreme[b]];
+      const double* pa = xyz + 3 * kc.Extreme[a];
+      const double* pb = xyz + 3 * kc.Extreme[b];
       return std::lexicographical_compare(pa, pa + 3, pb, pb + 3) ||
         (std::equal(pa, pa + 3, pb) && a < b);
     });
@@ -566,7 +561,8 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
       for (Index c = b; c < e; ++c)
       {
         local.Gather(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
-        frames[c] = ComputeCellFrame(local.Xyz.data(), local.Slots.data(), grid.CellSizeOf(c));
+        frames[c] = ComputeCellFrame(
+          local.Xyz.data(), IdView::Identity(static_cast<std::size_t>(grid.CellSizeOf(c))));
       }
     });
   }
@@ -648,11 +644,11 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
       // in the same order): local slot i is point points[i].
       local.Gather(xyz, points, n);
       const double* cellXyz = local.Xyz.data();
-      const Index* slots = local.Slots.data();
-      const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(cellXyz, slots, n);
-      KeyClusters kc = FindCellKeyClusters(cellXyz, slots, n, frame, rule, q);
+      const IdView slots = IdView::Identity(static_cast<std::size_t>(n));
+      const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(cellXyz, slots);
+      KeyClusters kc = FindCellKeyClusters(cellXyz, slots, frame, rule, q);
       CombineWithSampling(
-        q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), cellXyz, slots, groups);
+        q, kc, budget[c], CellSeed(parameters.RandomSeed, grid.CellKey[c]), cellXyz, groups);
 
       Index memberCursor = grid.CellStart[c];
       Index sampleIndex = sampleStart[c];

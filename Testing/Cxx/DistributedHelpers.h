@@ -36,9 +36,8 @@ struct GlobalCells
     for (asmcore::Index c = 0; c < this->Grid.NumberOfCells(); ++c)
     {
       this->Capacity.push_back(this->Grid.CellSizeOf(c));
-      this->Variation.push_back(asmcore::ComputeCellFrame(
-        cloud.data(), this->Grid.CellPoints(c), this->Grid.CellSizeOf(c))
-                                  .SurfaceVariation());
+      this->Variation.push_back(
+        asmcore::ComputeCellFrame(cloud.data(), this->Grid.CellIds(c)).SurfaceVariation());
     }
     for (asmcore::Index id : ids)
     {

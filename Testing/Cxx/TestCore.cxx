@@ -28,7 +28,7 @@ namespace
 asmcore::LocalPoints ToFrame(const Cloud& c, asmcore::CellFrame& frame)
 {
   const auto ids = AllIds(c);
-  frame = asmcore::ComputeCellFrame(c.data(), ids.data(), static_cast<Index>(ids.size()));
+  frame = asmcore::ComputeCellFrame(c.data(), ids);
   asmcore::LocalPoints q;
   for (Index id : ids)
   {

@@ -4,6 +4,7 @@
 // cuts), the in-plane linking (dense bins), the level-by-level kd-tree, the
 // neighbouring cells (one search per row) and the paper mode's search for
 // the sample nearest an unclaimed point (the cells' rings first).
+#include "Core/CellFrame.h"
 #include "Core/CellNeighbors.h"
 #include "Core/CellSize.h"
 #include "Core/Curvature.h"
@@ -161,7 +162,20 @@ TEST(FastPaths, IdViewsOfEitherListGiveTheSameGrid)
   EXPECT_EQ(std::vector<Index>(all.begin(), all.end()), ids);
   EXPECT_EQ(all[4321], 4321);
   EXPECT_FALSE(asmcore::IdView(ids).IsIdentity());
-  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), all, spec, UnevenTwoThreads()), reference);
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), all, spec, UnevenTwoThreads()), reference);  // A range stands for first ... first + n - 1 (a cell's slots in slot
+  // order: CellIds), and the frame over it is the frame over the listed ids.
+  const asmcore::IdView range = asmcore::IdView::Range(1000, 2000);
+  ASSERT_FALSE(range.IsIdentity());
+  ASSERT_EQ(range.size(), 2000u);
+  EXPECT_EQ(std::vector<Index>(range.begin(), range.end()),
+    std::vector<Index>(ids.begin() + 1000, ids.begin() + 3000));
+  EXPECT_EQ(range[1999], 2999);
+  const asmcore::CellFrame a = asmcore::ComputeCellFrame(c.data(), range);
+  const asmcore::CellFrame b = asmcore::ComputeCellFrame(c.data(), part);
+  EXPECT_EQ(a.Centroid, b.Centroid);
+  EXPECT_EQ(a.Axes, b.Axes);
+  EXPECT_EQ(a.Lambda, b.Lambda);
+  EXPECT_EQ(a.Count, 2000);
 }
 
 TEST(FastPaths, ResizeInParallelWritesEveryNewElement)
@@ -603,7 +617,8 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
     {
       near[j] = ranked[j].second;
     }
-    const asmcore::CellFrame fit = asmcore::ComputeCellFrame(surface.data(), near.data(), k);
+    const asmcore::CellFrame fit =
+      asmcore::ComputeCellFrame(surface.data(), asmcore::IdView(near.data(), static_cast<std::size_t>(k)));
     ASSERT_EQ(std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid)), plane[i]) << i;
   }
 }
