@@ -287,25 +287,25 @@ void RadiusIn(const Tree& tree, const double p[3], double r, std::vector<Index>&
 void Neighbors::KNearest(
   const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->IsCompact ? KNearestIn(this->Compact, p, k, ids, sqDist)
+  this->HasCompactLayout() ? KNearestIn(this->Compact, p, k, ids, sqDist)
                   : KNearestIn(this->Wide, p, k, ids, sqDist);
 }
 
 NearestPoint Neighbors::Nearest(const double p[3]) const
 {
-  return this->IsCompact ? NearestIn(this->Compact, p) : NearestIn(this->Wide, p);
+  return this->HasCompactLayout() ? NearestIn(this->Compact, p) : NearestIn(this->Wide, p);
 }
 
 void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) const
 {
-  this->IsCompact ? RadiusIn(this->Compact, p, r, ids, nullptr)
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, ids, nullptr)
                   : RadiusIn(this->Wide, p, r, ids, nullptr);
 }
 
 void Neighbors::Radius(
   const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->IsCompact ? RadiusIn(this->Compact, p, r, ids, &sqDist)
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, ids, &sqDist)
                   : RadiusIn(this->Wide, p, r, ids, &sqDist);
 }
 } // namespace asmcore

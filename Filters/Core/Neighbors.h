@@ -176,10 +176,11 @@ public:
   void Build(Coordinates xyz, IdView ids, const Execution& execution = {});
 
   /// Number of points in the tree.
-  Index Size() const { return this->IsCompact ? this->Compact.Size() : this->Wide.Size(); }
+  Index Size() const { return this->Compact.Size() + this->Wide.Size(); } // (one is empty)
   bool Empty() const { return this->Size() == 0; }
-  /// Whether the tree holds the compact layout (floats and 32-bit ids).
-  bool HasCompactLayout() const { return this->IsCompact; }
+  /// Whether the tree holds the compact layout (floats and 32-bit ids; an
+  /// empty tree holds neither).
+  bool HasCompactLayout() const { return !this->Compact.Empty(); }
 
   /// The min(k, Size()) points nearest p, sorted by squared distance then by
   /// id, in `ids` and `sqDist` (resized; their capacity is reused, so a
@@ -201,8 +202,7 @@ public:
 
 private:
   BasicNeighbors<WideEntry> Wide;
-  BasicNeighbors<CompactEntry> Compact;
-  bool IsCompact = false;
+  BasicNeighbors<CompactEntry> Compact; ///< (at most one of the two is filled)
 };
 } // namespace asmcore
 

@@ -693,7 +693,6 @@ void Neighbors::Build(Coordinates xyz, IdView ids, const Execution& execution)
   {
     compact = ids[i] <= most;
   }
-  this->IsCompact = compact;
   this->Wide = BasicNeighbors<WideEntry>();
   this->Compact = BasicNeighbors<CompactEntry>();
   if (compact)
