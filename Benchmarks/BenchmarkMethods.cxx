@@ -320,6 +320,10 @@ Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType)
   Method m;
   m.Name = randomModeType == 2 ? "vtkMaskPoints strat." : "vtkMaskPoints random";
   m.Run = [mask](bool keep) { return RunFilter(mask, keep); };
+  // VTK 9.2's vtkMaskPoints draws its random (1) and stratified (2) modes
+  // from the C library's global generator, which its RandomSeed does not
+  // reset (that seeds the spatial modes only).
+  m.Reseed = [](unsigned seed) { std::srand(seed); };
   return m;
 }
 } // namespace asmbench

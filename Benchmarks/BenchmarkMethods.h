@@ -65,6 +65,9 @@ struct Method
   std::string Note; ///< how it was driven to N_s (cell size, ...)
   /// Runs once; fills RunResult::Xyz when `keepPoints`.
   std::function<RunResult(bool keepPoints)> Run;
+  /// Random methods only (empty for the others): reseeds the generator the
+  /// next Run draws from (seed >= 1), so that a draw is reproducible.
+  std::function<void(unsigned seed)> Reseed;
 };
 
 Method MakeAsm(vtkPolyData* input, vtkIdType target, const AsmConfig& config);

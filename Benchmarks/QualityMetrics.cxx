@@ -86,4 +86,25 @@ Quality Reference::Measure(const std::vector<double>& simplified, int planeNeigh
   }
   return q;
 }
+
+Quality MedianQuality(const std::vector<Quality>& draws)
+{
+  Quality median = draws.front();
+  auto middle = [&draws](double Quality::*field) {
+    std::vector<double> values;
+    for (const Quality& q : draws)
+    {
+      values.push_back(q.*field);
+    }
+    const auto mid = values.begin() + static_cast<std::ptrdiff_t>((values.size() - 1) / 2);
+    std::nth_element(values.begin(), mid, values.end());
+    return *mid;
+  };
+  for (double Quality::*field : { &Quality::PlaneMean, &Quality::PlaneMax, &Quality::NNRms,
+         &Quality::Hole, &Quality::TipMean, &Quality::TipMax })
+  {
+    median.*field = middle(field);
+  }
+  return median;
+}
 } // namespace asmbench

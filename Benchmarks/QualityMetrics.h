@@ -35,6 +35,11 @@ struct Quality
   bool HasTips = false;
 };
 
+/// Each measure's median over `draws` (non-empty; e.g. the measures of
+/// several draws of a random method), measure by measure: the lower middle
+/// value for an even count.
+Quality MedianQuality(const std::vector<Quality>& draws);
+
 /// The original cloud, indexed once and measured against many simplifications.
 class Reference
 {

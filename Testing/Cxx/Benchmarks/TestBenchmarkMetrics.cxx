@@ -80,6 +80,37 @@ TEST(BenchmarkMetrics, ShiftedCopy)
   EXPECT_FALSE(q.HasTips);
 }
 
+TEST(BenchmarkMetrics, MedianQualityTakesEachMeasuresMiddle)
+{
+  // Three draws whose measures peak in different draws: the median is taken
+  // measure by measure, not the draw that is middle on one of them.
+  std::vector<asmbench::Quality> draws(3);
+  const double values[3][6] = { { 1, 9, 5, 2, 7, 3 }, { 3, 8, 4, 6, 1, 2 }, { 2, 7, 6, 4, 3, 1 } };
+  for (int d = 0; d < 3; ++d)
+  {
+    asmbench::Quality& q = draws[d];
+    q.PlaneMean = values[d][0];
+    q.PlaneMax = values[d][1];
+    q.NNRms = values[d][2];
+    q.Hole = values[d][3];
+    q.TipMean = values[d][4];
+    q.TipMax = values[d][5];
+    q.HasTips = true;
+  }
+  const asmbench::Quality m = asmbench::MedianQuality(draws);
+  EXPECT_EQ(m.PlaneMean, 2.0);
+  EXPECT_EQ(m.PlaneMax, 8.0);
+  EXPECT_EQ(m.NNRms, 5.0);
+  EXPECT_EQ(m.Hole, 4.0);
+  EXPECT_EQ(m.TipMean, 3.0);
+  EXPECT_EQ(m.TipMax, 2.0);
+  EXPECT_TRUE(m.HasTips);
+  // An even count gives the lower middle value; one draw is itself.
+  draws.pop_back();
+  EXPECT_EQ(asmbench::MedianQuality(draws).PlaneMean, 1.0);
+  EXPECT_EQ(asmbench::MedianQuality({ draws[1] }).Hole, 6.0);
+}
+
 TEST(BenchmarkData, SyntheticShapesAreSeededAndOnTheirSurface)
 {
   const asmbench::Input a = asmbench::MakeSpikes(5000);
