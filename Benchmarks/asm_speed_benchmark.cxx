@@ -18,7 +18,8 @@
  * sphere sampled uniformly by area). Default: the bundled scans and bumps
  * at 100k, 1M, 4M, 14M; inputs named on the command line are added.
  *
- * Per row: median wall time of --runs runs of the filter's Update() alone,
+ * Per row: median wall time of --runs runs of the filter's Update() alone
+ * (interleaved over the methods and thread counts: TimeInterleaved),
  * M input points per second, for ASM rows the speed ratio to each peer
  * (peer time / ASM time: > 1 means ASM is faster), and the peak memory
  * beyond the input and the output, in bytes per input point (measured once,
@@ -73,6 +74,65 @@ struct Timing
   double Median = NAN;
   vtkIdType Count = 0;
 };
+
+/// Times every method at every thread count, `runs` times each, after one
+/// untimed warm-up of each. The runs are interleaved (run 1 of every method
+/// at every thread count, then run 2, ...), so that a drift of the machine's
+/// speed during the run (other load, clocks) weighs on every thread count
+/// alike instead of biasing the speed-ups. A method that throws is left out.
+std::map<int, std::map<std::string, Timing>> TimeInterleaved(const std::vector<Method>& methods,
+  const std::vector<int>& threads, int runs, const std::string& inputName)
+{
+  std::map<std::string, bool> failed;
+  std::map<int, std::map<std::string, std::vector<double>>> seconds;
+  std::map<int, std::map<std::string, Timing>> timings;
+  auto run = [&](const Method& m, int t, bool timed) {
+    if (failed[m.Name])
+    {
+      return;
+    }
+    try
+    {
+      const RunResult result = m.Run(false);
+      if (timed)
+      {
+        seconds[t][m.Name].push_back(result.Seconds);
+        timings[t][m.Name].Count = result.Count;
+      }
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << m.Name << " failed on " << inputName << " (" << e.what() << "); row skipped\n";
+      failed[m.Name] = true;
+    }
+  };
+  for (int r = -1; r < runs; ++r) // r = -1: the warm-ups
+  {
+    for (int t : threads)
+    {
+      SetThreads(t);
+      for (const Method& m : methods)
+      {
+        run(m, t, r >= 0);
+      }
+    }
+  }
+  for (int t : threads)
+  {
+    for (const Method& m : methods)
+    {
+      if (failed[m.Name])
+      {
+        timings[t].erase(m.Name);
+      }
+      else if (seconds[t].count(m.Name))
+      {
+        timings[t][m.Name].Median = Median(seconds[t][m.Name]);
+      }
+    }
+  }
+  return timings;
+}
 
 /// One input of the run with its own fractions, configurations and runs.
 struct Job
@@ -406,35 +466,23 @@ int main(int argc, char* argv[])
 
       Table table(columns);
       std::map<std::string, double> memoryPerPoint, firstMedian;
+      const std::map<int, std::map<std::string, Timing>> timingsByThreads =
+        TimeInterleaved(methods, threads, job.Runs, input.Name);
       for (int t : threads)
       {
-        SetThreads(t);
-        std::map<std::string, Timing> timings;
-        for (const Method& m : methods)
+        const auto measured = timingsByThreads.find(t);
+        std::map<std::string, Timing> timings =
+          measured == timingsByThreads.end() ? std::map<std::string, Timing>() : measured->second;
+        if (memory && t == threads.front())
         {
-          std::vector<double> seconds;
-          Timing timing;
-          try
+          SetThreads(t);
+          for (const Method& m : methods)
           {
-            m.Run(false); // warm-up, not timed
-            for (int r = 0; r < job.Runs; ++r)
+            if (timings.count(m.Name))
             {
-              const RunResult result = m.Run(false);
-              seconds.push_back(result.Seconds);
-              timing.Count = result.Count;
+              const double bytes = PeakExtraBytes([&m]() { return m.Run(false).OutputBytes; });
+              memoryPerPoint[m.Name] = bytes >= 0.0 ? std::max(0.0, bytes) / static_cast<double>(n) : NAN;
             }
-          }
-          catch (const std::exception& e)
-          {
-            std::cerr << m.Name << " failed on " << input.Name << " (" << e.what() << "); row skipped\n";
-            continue;
-          }
-          timing.Median = Median(seconds);
-          timings[m.Name] = timing;
-          if (memory && t == threads.front())
-          {
-            const double bytes = PeakExtraBytes([&m]() { return m.Run(false).OutputBytes; });
-            memoryPerPoint[m.Name] = bytes >= 0.0 ? std::max(0.0, bytes) / static_cast<double>(n) : NAN;
           }
         }
         for (const Method& m : methods)
