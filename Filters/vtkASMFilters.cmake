@@ -27,6 +27,7 @@ set(ASM_FILTERS_CORE
   KeyPoints
   Budget
   Simplify
+  Unclaimed
   CellNeighbors
   FeatureKeyPoints
   Lloyd
