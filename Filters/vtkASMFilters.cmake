@@ -24,6 +24,7 @@ set(ASM_FILTERS_CORE
   Grid
   CellSize
   CellFrame
+  PlaneClusters
   KeyPoints
   Budget
   Simplify

@@ -13,65 +13,12 @@
 
 #include "CellFrame.h"
 #include "Common.h"
-
-#include <Eigen/Core>
+#include "PlaneClusters.h"
 
 #include <cfloat>
 
 namespace asmcore
 {
-using LocalPoints = std::vector<Eigen::Vector3d>;
-
-/// A list of clusters, each a list of indices into a LocalPoints.
-struct VTKASMFILTERS_EXPORT Clusters
-{
-  std::vector<Index> Members;
-  std::vector<Index> Offsets = { 0 }; ///< cluster k is Members[Offsets[k], Offsets[k+1])
-
-  Index Size() const { return static_cast<Index>(this->Offsets.size()) - 1; }
-  Index CountOf(Index k) const { return this->Offsets[k + 1] - this->Offsets[k]; }
-  const Index* Begin(Index k) const { return this->Members.data() + this->Offsets[k]; }
-  const Index* End(Index k) const { return this->Members.data() + this->Offsets[k + 1]; }
-  void Clear()
-  {
-    this->Members.clear();
-    this->Offsets.assign(1, 0);
-  }
-  template <typename It>
-  void Add(It first, It last)
-  {
-    this->Members.insert(this->Members.end(), first, last);
-    this->Offsets.push_back(static_cast<Index>(this->Members.size()));
-  }
-};
-
-/// Centroid of q[members[i]].
-VTKASMFILTERS_EXPORT Eigen::Vector3d Centroid(
-  const LocalPoints& q, const Index* first, const Index* last);
-
-/// The member nearest `target` (ties: the lower index).
-VTKASMFILTERS_EXPORT Index NearestMember(
-  const LocalPoints& q, const Index* first, const Index* last, const Eigen::Vector3d& target);
-
-/// Where a cluster is represented: its centroid, or the member nearest the
-/// centroid when `snap` is set.
-VTKASMFILTERS_EXPORT Eigen::Vector3d Representative(
-  const LocalPoints& q, const Index* first, const Index* last, bool snap);
-
-/// Separate clusters of `subset` in the (u0, u1) plane: the connected
-/// components of the graph linking points closer than `linkDistance` in that
-/// plane (single linkage). Clusters are ordered by their first member in
-/// `subset`. linkDistance <= 0 puts every point in one cluster.
-VTKASMFILTERS_EXPORT Clusters LinkInPlane(
-  const LocalPoints& q, const std::vector<Index>& subset, double linkDistance);
-
-/// Split `subset` (reordered in place) into exactly k >= 1 non-empty,
-/// spatially coherent clusters in the (u0, u1) plane by recursive median
-/// splits along the axis of larger extent, appended to `out`. Requires
-/// k <= subset.size().
-VTKASMFILTERS_EXPORT void SplitInPlane(
-  const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out);
-
 /// Parameters of the key point search in one cell.
 struct VTKASMFILTERS_EXPORT KeyPointOptions
 {
@@ -94,10 +41,6 @@ struct VTKASMFILTERS_EXPORT KeyClusters
   int Iterations = 0;         ///< partitions computed (1 without adaptation)
   bool Flat = false;          ///< the cell had no extent along v2
 };
-
-/// Typical spacing-based link distance: `factor` times the mean point spacing
-/// of n points spread over the (u0, u1) extent of q.
-VTKASMFILTERS_EXPORT double PlaneLinkDistance(const LocalPoints& q, double factor);
 
 /// Partition q with alpha, cluster the top and bottom bands, and, when
 /// ErrorTolerance > 0, shrink alpha (alpha <- alpha * eps / MKPE_c, the
