@@ -2,6 +2,7 @@
 #include "QualityMetrics.h"
 
 #include "BenchmarkData.h"
+#include "BenchmarkReport.h"
 
 #include "Core/Metrics.h"
 
@@ -90,20 +91,15 @@ Quality Reference::Measure(const std::vector<double>& simplified, int planeNeigh
 Quality MedianQuality(const std::vector<Quality>& draws)
 {
   Quality median = draws.front();
-  auto middle = [&draws](double Quality::*field) {
+  for (double Quality::*field : { &Quality::PlaneMean, &Quality::PlaneMax, &Quality::NNRms,
+         &Quality::Hole, &Quality::TipMean, &Quality::TipMax })
+  {
     std::vector<double> values;
     for (const Quality& q : draws)
     {
       values.push_back(q.*field);
     }
-    const auto mid = values.begin() + static_cast<std::ptrdiff_t>((values.size() - 1) / 2);
-    std::nth_element(values.begin(), mid, values.end());
-    return *mid;
-  };
-  for (double Quality::*field : { &Quality::PlaneMean, &Quality::PlaneMax, &Quality::NNRms,
-         &Quality::Hole, &Quality::TipMean, &Quality::TipMax })
-  {
-    median.*field = middle(field);
+    median.*field = Median(values);
   }
   return median;
 }

@@ -36,8 +36,8 @@ struct Quality
 };
 
 /// Each measure's median over `draws` (non-empty; e.g. the measures of
-/// several draws of a random method), measure by measure: the lower middle
-/// value for an even count.
+/// several draws of a random method), measure by measure (Median: the mean
+/// of the two middle values for an even count).
 Quality MedianQuality(const std::vector<Quality>& draws);
 
 /// The original cloud, indexed once and measured against many simplifications.

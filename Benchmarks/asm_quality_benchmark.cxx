@@ -86,8 +86,7 @@ Row Measured(const Method& m, const Reference& reference)
     seconds.push_back(r.Seconds);
     qualities.push_back(reference.Measure(r.Xyz));
   }
-  std::sort(seconds.begin(), seconds.end());
-  return { m.Name, m.IsASM, count, seconds[(seconds.size() - 1) / 2], MedianQuality(qualities) };
+  return { m.Name, m.IsASM, count, Median(seconds), MedianQuality(qualities) };
 }
 
 /// Per ASM configuration and measure: ratios to the best peer, and wins.

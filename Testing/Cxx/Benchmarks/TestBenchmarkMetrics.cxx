@@ -105,9 +105,9 @@ TEST(BenchmarkMetrics, MedianQualityTakesEachMeasuresMiddle)
   EXPECT_EQ(m.TipMean, 3.0);
   EXPECT_EQ(m.TipMax, 2.0);
   EXPECT_TRUE(m.HasTips);
-  // An even count gives the lower middle value; one draw is itself.
+  // An even count gives the mean of the two middle values; one draw is itself.
   draws.pop_back();
-  EXPECT_EQ(asmbench::MedianQuality(draws).PlaneMean, 1.0);
+  EXPECT_EQ(asmbench::MedianQuality(draws).PlaneMean, 2.0);
   EXPECT_EQ(asmbench::MedianQuality({ draws[1] }).Hole, 6.0);
 }
 
