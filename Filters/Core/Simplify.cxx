@@ -44,6 +44,10 @@ struct CellCoordinates
     this->Xyz.resize(static_cast<std::size_t>(3 * n));
     for (Index i = 0; i < n; ++i)
     {
+      if (i + 8 < n)
+      {
+        Prefetch(xyz.Address(points[i + 8])); // the points are scattered in memory
+      }
       xyz.Get(points[i], this->Xyz.data() + 3 * i);
     }
   }
