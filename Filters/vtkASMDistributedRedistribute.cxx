@@ -12,6 +12,7 @@
 #include "vtkPointSet.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <numeric>
 #include <utility>
@@ -147,6 +148,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   width += 2;
 
   std::vector<vtkDataArray*> arrays;
+  arrays.reserve(slots.size());
   for (const ArraySlot& s : slots)
   {
     arrays.push_back(inPD->GetArray(s.Name.c_str()));
@@ -169,7 +171,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
       {
         // The values' bytes, exactly.
         std::memcpy(bytes, arrays[k]->GetVoidPointer(id * s.Components),
-          static_cast<std::size_t>(size * s.Components));
+          static_cast<std::size_t>(size) * static_cast<std::size_t>(s.Components));
         continue;
       }
       tuple.resize(static_cast<std::size_t>(s.Components));
@@ -179,7 +181,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
         switch (s.Type)
         {
           vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
-                           std::memcpy(bytes + c * size, &v, sizeof(v)));
+                           std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
         }
       }
     }
@@ -278,8 +280,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     for (std::size_t k = 0; k < slots.size(); ++k)
     {
       const ArraySlot& s = slots[k];
-      const std::size_t bytes =
-        static_cast<std::size_t>(s.Components * vtkDataArray::GetDataTypeSize(s.Type));
+      const std::size_t bytes = static_cast<std::size_t>(s.Components) *
+        static_cast<std::size_t>(vtkDataArray::GetDataTypeSize(s.Type));
       std::memcpy(outArrays[k]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
         r + s.Offset, bytes);
     }

@@ -579,7 +579,8 @@ void BasicNeighbors<E>::SplitNodes(const Task& task, const Scratch& scratch, Pie
   std::function<int(int, int, int, int)> make = [&](int bl, int bh, int j, int self) -> int {
     if (bh - bl == 1)
     {
-      return this->AddChild(task, start[bl], start[bh], &buckets.Lo[3 * bl], &buckets.Hi[3 * bl],
+      const auto corner = static_cast<std::size_t>(3) * static_cast<std::size_t>(bl);
+      return this->AddChild(task, start[bl], start[bh], &buckets.Lo[corner], &buckets.Hi[corner],
         buckets.MinId[bl], piece);
     }
     const int half = (bl + bh) / 2;
