@@ -37,6 +37,7 @@ set(ASM_FILTERS_CORE
   HoleFilling
   Covering
   SnappedHoles
+  FeatureOutput
   FeatureSimplify
   Neighbors
   Curvature

@@ -7,12 +7,12 @@
 #include "CellNeighbors.h"
 #include "Covering.h"
 #include "FeatureKeyPoints.h"
+#include "FeatureOutput.h"
 #include "Grid.h"
 #include "GroupBy.h"
 #include "HoleFilling.h"
 #include "Lloyd.h"
 #include "Neighbors.h"
-#include "SnappedHoles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,30 +22,14 @@
 
 namespace asmcore
 {
+using namespace feature;
+
 namespace
 {
 int CrossIterations(const SimplifyParameters& p)
 {
   return std::max(0, std::min(MaxCrossCellIterations, p.CrossCellIterations));
 }
-
-// Per-sample facts besides the position.
-struct SampleInfo
-{
-  Index Owner = -1;     // grid cell whose frame gives the normal
-  /// Key samples: the extreme input point (a slot); from the output's first
-  /// step on, every sample's representative (an input point id).
-  Index Point = -1;
-  double KeyError = 0.0;
-};
-
-// What the output needs of a cell's frame.
-struct CellSurface
-{
-  Eigen::Vector3d Normal;
-  Eigen::Vector3d Centroid;
-  double SurfaceVariation;
-};
 
 // Every sample gets at least one member when its ring has a point to spare:
 // the nearest point of a cluster with two or more members moves to it.
@@ -118,33 +102,6 @@ void JoinUnassignedPoints(Coordinates P, const SampleSet& samples, Index count,
       }
     }
   });
-}
-// Distributed runs: only the samples of the cells this process outputs (its
-// own), with their members; the others were computed as context.
-void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
-  const CellGrid& grid, const SimplifyParameters& parameters)
-{
-  std::vector<char> output(static_cast<std::size_t>(grid.NumberOfCells()));
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
-  }
-  UnwrittenArray<Sample> samples;
-  PointArray<Index> members;
-  for (std::size_t s = 0; s < result.Samples.size(); ++s)
-  {
-    if (!output[info[s].Owner])
-    {
-      continue;
-    }
-    Sample sample = result.Samples[s];
-    const auto begin = result.Members.begin() + sample.MemberBegin;
-    sample.MemberBegin = static_cast<Index>(members.size());
-    members.insert(members.end(), begin, begin + sample.ClusterSize);
-    samples.push_back(sample);
-  }
-  result.Samples.swap(samples);
-  result.Members.swap(members);
 }
 } // namespace
 
@@ -419,152 +376,17 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     return result;
   }
 
-  // Output, step 1, with the copy: each sample's final position (into
-  // samples.Position) and representative (info[s].Point), and the bound on
-  // the snapped samples' holes. Then the members and representatives become
-  // input point ids and the copy is released, before the samples are laid
-  // out (step 2).
-  const bool inputPointSamples = parameters.Snap || parameters.InputPointSamples;
-  execution.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      double* p = samples.Position.data() + 3 * s;
-      const Index* first = result.Members.data() + memberStart[s]; // slots
-      const Index size = memberStart[s + 1] - memberStart[s];
-      // The member nearest the sample, as a slot (ties: by position, then
-      // by input point id).
-      Index nearest = info[s].Point;
-      double bestD = std::numeric_limits<double>::infinity();
-      double mean[3] = { 0.0, 0.0, 0.0 };
-      for (Index m = 0; m < size; ++m)
-      {
-        double x[3];
-        P.Get(first[m], x);
-        for (int a = 0; a < 3; ++a)
-        {
-          mean[a] += x[a];
-        }
-        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-          (x[2] - p[2]) * (x[2] - p[2]);
-        // Ties, rounding included (a two-point cluster's centre is as near
-        // to both): the first position, whatever the order of the points.
-        // (Duplicates: the lower id.)
-        const bool tie = NearlyEqual(d, bestD);
-        if (tie && nearest >= 0)
-        {
-          const std::array<double, 3> y = P.At(nearest);
-          if (PositionBefore(x, y.data()) ||
-            (!PositionBefore(y.data(), x) && idOf[first[m]] < idOf[nearest]))
-          {
-            bestD = d;
-            nearest = first[m];
-          }
-        }
-        else if (tie || d < bestD)
-        {
-          bestD = d;
-          nearest = first[m];
-        }
-      }
-      if (nearest < 0)
-      {
-        nearest = grid.CellStart[info[s].Owner]; // no member could be found
-      }
-      const bool fixed = samples.Fixed[s] != 0;
-      const bool snap = inputPointSamples && !(fixed && parameters.ExtremeKeyPoints);
-      // A key sample placed on its extreme point stands for that point, even
-      // when the point joined another sample's cluster (a tie with a sample
-      // at the same position): its position is exactly that input point.
-      if (!(fixed && parameters.ExtremeKeyPoints && info[s].Point >= 0))
-      {
-        info[s].Point = nearest;
-      }
-      // A free sample that is not snapped is its final cluster's centroid.
-      if (snap)
-      {
-        P.Get(nearest, p);
-      }
-      else if (!fixed && size > 0)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] = mean[a] / static_cast<double>(size);
-        }
-      }
-    }
-  });
-  if (parameters.BoundSnappedHoles)
-  {
-    std::vector<char> snapped(static_cast<std::size_t>(count), 0);
-    for (Index s = 0; s < count; ++s)
-    {
-      // (Snap is the user's demand for input points: left alone.)
-      snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
-        memberStart[s + 1] - memberStart[s] > 1;
-    }
-    BoundSnappedHoles(
-      P, memberStart, result.Members.data(), snapped, samples.Position.data(), execution);
-  }
-  execution.Run(0, static_cast<Index>(result.Members.size()), [&](Index b, Index e) {
-    for (Index j = b; j < e; ++j)
-    {
-      result.Members[j] = idOf[result.Members[j]];
-    }
-  });
-  for (SampleInfo& sample : info)
-  {
-    sample.Point = idOf[sample.Point];
-  }
+  // Output, step 1, with the copy: the samples' final positions and
+  // representatives; then the members and representatives become input
+  // point ids, and the copy is released.
+  PlaceOutputSamples(P, grid, idOf, memberStart, parameters, samples, info, result.Members, execution);
   cellFloats.reset();
   cellDoubles.reset();
   slotIds.reset();
   P = Coordinates();
 
   // Step 2: the samples.
-  Eigen::Vector3d cloudCentroid;
-  if (parameters.CloudCentroid)
-  {
-    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
-  }
-  else
-  {
-    ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
-  }
-  ResizeInParallel(result.Samples, static_cast<std::size_t>(count), Sample{}, execution);
-  execution.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      Sample& out = result.Samples[s];
-      const CellSurface& surface = surfaces[info[s].Owner];
-      out.MemberBegin = memberStart[s];
-      out.ClusterSize = memberStart[s + 1] - memberStart[s];
-      out.Representative = info[s].Point;
-      std::copy_n(samples.Position.data() + 3 * s, 3, out.Position);
-      // The normal: the cell's, oriented along the members' input normals,
-      // else away from the cloud's centroid.
-      Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
-      for (Index m = 0; normals && m < out.ClusterSize; ++m)
-      {
-        Eigen::Vector3d v;
-        normals.Get(result.Members[out.MemberBegin + m], v.data());
-        if (v.allFinite())
-        {
-          normalSum += v;
-        }
-      }
-      Eigen::Vector3d normal = surface.Normal;
-      const Eigen::Vector3d reference =
-        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(surface.Centroid - cloudCentroid);
-      if (normal.dot(reference) < 0.0)
-      {
-        normal = -normal;
-      }
-      std::copy(normal.data(), normal.data() + 3, out.Normal);
-      out.SurfaceVariation = surface.SurfaceVariation;
-      out.Key = samples.Fixed[s] != 0;
-      out.KeyError = info[s].KeyError;
-    }
-  });
+  LayOutSamples(xyz, ids, normals, surfaces, info, samples, memberStart, parameters, result, execution);
   if (parameters.OutputCell)
   {
     KeepOutputCells(result, info, grid, parameters);

@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "FeatureOutput.h"
+
+#include "SnappedHoles.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace asmcore
+{
+namespace feature
+{
+void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf,
+  const std::vector<Index>& memberStart, const SimplifyParameters& parameters, SampleSet& samples,
+  std::vector<SampleInfo>& info, PointArray<Index>& members, const Execution& execution)
+{
+  const Index count = samples.Size();
+  const bool inputPointSamples = parameters.Snap || parameters.InputPointSamples;
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      double* p = samples.Position.data() + 3 * s;
+      const Index* first = members.data() + memberStart[s]; // slots
+      const Index size = memberStart[s + 1] - memberStart[s];
+      // The member nearest the sample, as a slot (ties: by position, then
+      // by input point id).
+      Index nearest = info[s].Point;
+      double bestD = std::numeric_limits<double>::infinity();
+      double mean[3] = { 0.0, 0.0, 0.0 };
+      for (Index m = 0; m < size; ++m)
+      {
+        double x[3];
+        P.Get(first[m], x);
+        for (int a = 0; a < 3; ++a)
+        {
+          mean[a] += x[a];
+        }
+        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+          (x[2] - p[2]) * (x[2] - p[2]);
+        // Ties, rounding included (a two-point cluster's centre is as near
+        // to both): the first position, whatever the order of the points.
+        // (Duplicates: the lower id.)
+        const bool tie = NearlyEqual(d, bestD);
+        if (tie && nearest >= 0)
+        {
+          const std::array<double, 3> y = P.At(nearest);
+          if (PositionBefore(x, y.data()) ||
+            (!PositionBefore(y.data(), x) && idOf[first[m]] < idOf[nearest]))
+          {
+            bestD = d;
+            nearest = first[m];
+          }
+        }
+        else if (tie || d < bestD)
+        {
+          bestD = d;
+          nearest = first[m];
+        }
+      }
+      if (nearest < 0)
+      {
+        nearest = grid.CellStart[info[s].Owner]; // no member could be found
+      }
+      const bool fixed = samples.Fixed[s] != 0;
+      const bool snap = inputPointSamples && !(fixed && parameters.ExtremeKeyPoints);
+      // A key sample placed on its extreme point stands for that point, even
+      // when the point joined another sample's cluster (a tie with a sample
+      // at the same position): its position is exactly that input point.
+      if (!(fixed && parameters.ExtremeKeyPoints && info[s].Point >= 0))
+      {
+        info[s].Point = nearest;
+      }
+      // A free sample that is not snapped is its final cluster's centroid.
+      if (snap)
+      {
+        P.Get(nearest, p);
+      }
+      else if (!fixed && size > 0)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = mean[a] / static_cast<double>(size);
+        }
+      }
+    }
+  });
+  if (parameters.BoundSnappedHoles)
+  {
+    std::vector<char> snapped(static_cast<std::size_t>(count), 0);
+    for (Index s = 0; s < count; ++s)
+    {
+      // (Snap is the user's demand for input points: left alone.)
+      snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
+        memberStart[s + 1] - memberStart[s] > 1;
+    }
+    BoundSnappedHoles(
+      P, memberStart, members.data(), snapped, samples.Position.data(), execution);
+  }
+  execution.Run(0, static_cast<Index>(members.size()), [&](Index b, Index e) {
+    for (Index j = b; j < e; ++j)
+    {
+      members[j] = idOf[members[j]];
+    }
+  });
+  for (SampleInfo& sample : info)
+  {
+    sample.Point = idOf[sample.Point];
+  }
+}
+
+void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,
+  const std::vector<CellSurface>& surfaces, const std::vector<SampleInfo>& info,
+  const SampleSet& samples, const std::vector<Index>& memberStart,
+  const SimplifyParameters& parameters, SimplifyResult& result, const Execution& execution)
+{
+  const Index count = samples.Size();
+  Eigen::Vector3d cloudCentroid;
+  if (parameters.CloudCentroid)
+  {
+    cloudCentroid = Eigen::Vector3d(parameters.CloudCentroid);
+  }
+  else
+  {
+    ComputeCentroid(xyz, ids, cloudCentroid.data(), execution);
+  }
+  ResizeInParallel(result.Samples, static_cast<std::size_t>(count), Sample{}, execution);
+  execution.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      Sample& out = result.Samples[s];
+      const CellSurface& surface = surfaces[info[s].Owner];
+      out.MemberBegin = memberStart[s];
+      out.ClusterSize = memberStart[s + 1] - memberStart[s];
+      out.Representative = info[s].Point;
+      std::copy_n(samples.Position.data() + 3 * s, 3, out.Position);
+      // The normal: the cell's, oriented along the members' input normals,
+      // else away from the cloud's centroid.
+      Eigen::Vector3d normalSum = Eigen::Vector3d::Zero();
+      for (Index m = 0; normals && m < out.ClusterSize; ++m)
+      {
+        Eigen::Vector3d v;
+        normals.Get(result.Members[out.MemberBegin + m], v.data());
+        if (v.allFinite())
+        {
+          normalSum += v;
+        }
+      }
+      Eigen::Vector3d normal = surface.Normal;
+      const Eigen::Vector3d reference =
+        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(surface.Centroid - cloudCentroid);
+      if (normal.dot(reference) < 0.0)
+      {
+        normal = -normal;
+      }
+      std::copy(normal.data(), normal.data() + 3, out.Normal);
+      out.SurfaceVariation = surface.SurfaceVariation;
+      out.Key = samples.Fixed[s] != 0;
+      out.KeyError = info[s].KeyError;
+    }
+  });
+}
+
+// Distributed runs: only the samples of the cells this process outputs (its
+// own), with their members; the others were computed as context.
+void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
+  const CellGrid& grid, const SimplifyParameters& parameters)
+{
+  std::vector<char> output(static_cast<std::size_t>(grid.NumberOfCells()));
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
+  }
+  UnwrittenArray<Sample> samples;
+  PointArray<Index> members;
+  for (std::size_t s = 0; s < result.Samples.size(); ++s)
+  {
+    if (!output[info[s].Owner])
+    {
+      continue;
+    }
+    Sample sample = result.Samples[s];
+    const auto begin = result.Members.begin() + sample.MemberBegin;
+    sample.MemberBegin = static_cast<Index>(members.size());
+    members.insert(members.end(), begin, begin + sample.ClusterSize);
+    samples.push_back(sample);
+  }
+  result.Samples.swap(samples);
+  result.Members.swap(members);
+}
+} // namespace feature
+} // namespace asmcore

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The output of the feature-preserving mode (FeatureSimplify.h, phase 6),
+ * in two steps: with the cell-ordered copy of the points, each sample's
+ * final position and representative (PlaceOutputSamples); after the copy is
+ * released, the samples with their normals (LayOutSamples). Private to
+ * SimplifyFeaturePreserving.
+ */
+#ifndef asm_core_FeatureOutput_h
+#define asm_core_FeatureOutput_h
+
+#include "Grid.h"
+#include "Lloyd.h"
+#include "Simplify.h"
+
+#include <vector>
+
+namespace asmcore
+{
+namespace feature
+{
+// Per-sample facts besides the position.
+struct VTKASMFILTERS_EXPORT SampleInfo
+{
+  Index Owner = -1;     // grid cell whose frame gives the normal
+  /// Key samples: the extreme input point (a slot); from the output's first
+  /// step on, every sample's representative (an input point id).
+  Index Point = -1;
+  double KeyError = 0.0;
+};
+
+// What the output needs of a cell's frame.
+struct VTKASMFILTERS_EXPORT CellSurface
+{
+  Eigen::Vector3d Normal;
+  Eigen::Vector3d Centroid;
+  double SurfaceVariation;
+};
+
+/// Output, step 1. P: the points in slot order (the cell-ordered copy);
+/// members: each sample's members as slots, grouped by sample
+/// (memberStart). Each sample's final position (into samples.Position): an
+/// input point with InputPointSamples or Snap (the member nearest the
+/// sample; ties by position, then id), else its cluster's centroid (key
+/// samples stay on their extreme point); with BoundSnappedHoles, the
+/// snapped samples whose cluster reaches past the largest hole minimax
+/// centres would leave move towards that centre. Then the members and each
+/// sample's representative (info[s].Point) become input point ids (idOf).
+VTKASMFILTERS_EXPORT void PlaceOutputSamples(Coordinates P, const CellGrid& grid,
+  const SlotIds& idOf, const std::vector<Index>& memberStart, const SimplifyParameters& parameters,
+  SampleSet& samples, std::vector<SampleInfo>& info, PointArray<Index>& members,
+  const Execution& execution);
+
+/// Output, step 2: result.Samples from the samples' positions, members and
+/// representatives, each with its owner cell's surface: the normal oriented
+/// along the members' input normals (else away from the cloud's centroid),
+/// the surface variation, the key flag and error.
+VTKASMFILTERS_EXPORT void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,
+  const std::vector<CellSurface>& surfaces, const std::vector<SampleInfo>& info,
+  const SampleSet& samples, const std::vector<Index>& memberStart,
+  const SimplifyParameters& parameters, SimplifyResult& result, const Execution& execution);
+
+// Distributed runs: only the samples of the cells this process outputs (its
+// own), with their members; the others were computed as context.
+VTKASMFILTERS_EXPORT void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
+  const CellGrid& grid, const SimplifyParameters& parameters);
+} // namespace feature
+} // namespace asmcore
+
+#endif
