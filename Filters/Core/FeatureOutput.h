@@ -51,7 +51,7 @@ VTKASMFILTERS_EXPORT void PlaceOutputSamples(Coordinates P, const CellGrid& grid
   SampleSet& samples, std::vector<SampleInfo>& info, PointArray<Index>& members,
   const Execution& execution);
 
-/// Output, step 2: result.Samples from the samples' positions, members and
+/// Output, step 2 (result.Members holds input point ids): result.Samples from the samples' positions, members and
 /// representatives, each with its owner cell's surface: the normal oriented
 /// along the members' input normals (else away from the cloud's centroid),
 /// the surface variation, the key flag and error.
@@ -60,8 +60,9 @@ VTKASMFILTERS_EXPORT void LayOutSamples(Coordinates xyz, IdView ids, NormalField
   const SampleSet& samples, const std::vector<Index>& memberStart,
   const SimplifyParameters& parameters, SimplifyResult& result, const Execution& execution);
 
-// Distributed runs: only the samples of the cells this process outputs (its
-// own), with their members; the others were computed as context.
+/// Distributed runs: only the samples of the cells this process outputs (its
+/// own, SimplifyParameters::OutputCell), with their members; the others were
+/// computed as context.
 VTKASMFILTERS_EXPORT void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
   const CellGrid& grid, const SimplifyParameters& parameters);
 } // namespace feature
