@@ -228,10 +228,9 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
   // After a few samples move to other cells (as hole filling moves them),
   // the incremental update gives exactly the assignment searched afresh.
   const Cloud c = asmtest::Sphere(20000, 1.0, 11);
-  const auto ids = AllIds(c);
-  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
-  const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, 0.2));
-  const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, 0.2);
+  const asmcore::CellGrid& grid = gridded.Grid;
+  const asmcore::CellNeighborTable& neighbors = gridded.Neighbors;
   const Index cells = grid.NumberOfCells();
   // Four samples per cell, on points of the cell (every 4th sample of
   // every 3rd cell absent, so that some rings are thin); the most populous

@@ -3,7 +3,9 @@
 #ifndef asm_TestHelpers_h
 #define asm_TestHelpers_h
 
+#include "Core/CellNeighbors.h"
 #include "Core/Common.h"
+#include "Core/Grid.h"
 
 #include <cmath>
 #include <cstdint>
@@ -67,6 +69,23 @@ inline std::vector<std::int64_t> AllIds(const Cloud& c)
     ids[i] = static_cast<std::int64_t>(i);
   }
   return ids;
+}
+
+/// The grid of cells of edge h over all points of a cloud (from its
+/// bounds), and the grid's table of neighbouring cells.
+struct GriddedCloud
+{
+  asmcore::CellGrid Grid;
+  asmcore::CellNeighborTable Neighbors;
+};
+inline GriddedCloud Gridded(const Cloud& c, double h)
+{
+  const auto ids = AllIds(c);
+  GriddedCloud g;
+  g.Grid = asmcore::BuildCellGrid(
+    c.data(), ids, asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), h));
+  g.Neighbors = asmcore::BuildCellNeighbors(g.Grid);
+  return g;
 }
 
 /// Cuts ranges into uneven pieces and runs them on two threads: the results

@@ -116,10 +116,9 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
   // one in each cell of the other half (large gaps), so that many samples
   // move and moves change the removal costs of candidates computed ahead.
   const Cloud c = asmtest::Sphere(30000, 1.0, 19);
-  const auto ids = asmtest::AllIds(c);
-  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
-  const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, 0.15));
-  const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, 0.15);
+  const asmcore::CellGrid& grid = gridded.Grid;
+  const asmcore::CellNeighborTable& neighbors = gridded.Neighbors;
   const Index cells = grid.NumberOfCells();
   asmcore::SampleSet samples;
   samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
