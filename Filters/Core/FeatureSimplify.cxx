@@ -22,7 +22,11 @@
 
 namespace asmcore
 {
-using namespace feature;
+using feature::CellSurface;
+using feature::KeepOutputCells;
+using feature::LayOutSamples;
+using feature::PlaceOutputSamples;
+using feature::SampleInfo;
 
 namespace
 {
