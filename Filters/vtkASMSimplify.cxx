@@ -68,9 +68,11 @@ int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
 bool vtkASMSimplify::CheckParameters()
 {
   const double values[] = { this->OutputFraction, this->CellSize, this->SamplesPerCell, this->Alpha,
-    this->ErrorTolerance, this->CurvatureWeight, this->FeatureSamplesPerCell, this->VariationBudget };
+    this->ErrorTolerance, this->CurvatureWeight, this->FeatureSamplesPerCell, this->VariationBudget,
+    this->VariationCap };
   const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha",
-    "ErrorTolerance", "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget" };
+    "ErrorTolerance", "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget",
+    "VariationCap" };
   for (std::size_t i = 0; i < sizeof(values) / sizeof(values[0]); ++i)
   {
     if (!std::isfinite(values[i]))
@@ -198,6 +200,10 @@ int vtkASMSimplify::RequestData(
   }
   parameters.FeatureSamplesPerCell = this->FeatureSamplesPerCell;
   parameters.VariationBudget = this->VariationBudget;
+  parameters.VariationCap = this->VariationCap;
+  parameters.ReserveFreeSample = this->ReserveFreeSample;
+  // Lloyd steps over the whole cloud after the hole filling: not distributed.
+  parameters.FinalLloydIterations = distributed ? 0 : this->FinalLloydIterations;
   // Covering refinement moves samples across the halo: not distributed.
   parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
   parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
@@ -456,6 +462,9 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HoleFillFraction: " << this->HoleFillFraction << "\n";
   os << indent << "FeatureSamplesPerCell: " << this->FeatureSamplesPerCell << "\n";
   os << indent << "VariationBudget: " << this->VariationBudget << "\n";
+  os << indent << "VariationCap: " << this->VariationCap << "\n";
+  os << indent << "ReserveFreeSample: " << this->ReserveFreeSample << "\n";
+  os << indent << "FinalLloydIterations: " << this->FinalLloydIterations << "\n";
   os << indent << "CoveringRounds: " << this->CoveringRounds << "\n";
   os << indent << "BoundSnappedHoles: " << this->BoundSnappedHoles << "\n";
   os << indent << "SparseCellKeyPoints: " << this->SparseCellKeyPoints << "\n";

@@ -308,6 +308,41 @@ public:
 
   ///@{
   /**
+   * FEATURE_PRESERVING: the largest ratio sigma_c / mean(sigma) that the
+   * VariationBudget weight counts (unitless, >= 0; 0: no cap), so that a
+   * few cusps or spikes do not draw the samples of the smooth surface
+   * away; default 5 (a cell weighs at most 1 + 5 * VariationBudget times a
+   * flat one).
+   */
+  vtkSetClampMacro(VariationCap, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(VariationCap, double);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: a cell of two or more samples keeps at least one
+   * free (Lloyd) sample, so that at most N_c - 1 of its samples are key
+   * samples (a cell of one sample may still make it a key sample); default
+   * on. Off: key samples may take a cell's whole budget.
+   */
+  vtkSetMacro(ReserveFreeSample, bool);
+  vtkGetMacro(ReserveFreeSample, bool);
+  vtkBooleanMacro(ReserveFreeSample, bool);
+  ///@}
+
+  ///@{
+  /**
+   * FEATURE_PRESERVING: Lloyd iterations across cell borders after the hole
+   * filling, before the final clusters (iterations, in [0, 8]); they tighten
+   * the clusters that the hole filling moved; default 2. Global like
+   * FillHoles: distributed runs switch them off.
+   */
+  vtkSetClampMacro(FinalLloydIterations, int, 0, 8);
+  vtkGetMacro(FinalLloydIterations, int);
+  ///@}
+
+  ///@{
+  /**
    * FEATURE_PRESERVING, with InputPointSamples or SnapToInputPoints: rounds
    * of covering refinement, in [0, 8]; default 0. A round moves every
    * non-key sample to the member of its cluster whose farthest member is
@@ -567,6 +602,9 @@ protected:
   double HoleFillFraction = 0.02;
   double FeatureSamplesPerCell = 4.0;
   double VariationBudget = 1.0;
+  double VariationCap = 5.0;
+  bool ReserveFreeSample = true;
+  int FinalLloydIterations = 2;
   int CoveringRounds = 0;
   bool SparseCellKeyPoints = true;
   bool BoundSnappedHoles = true;

@@ -269,7 +269,9 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     for (Index c = b; c < e; ++c)
     {
       const Index first = samples.Start[c];
-      const Index keyCount = std::min<Index>(budget[c], static_cast<Index>(keys[c].size()));
+      // (ReserveFreeSample: a cell of two or more samples keeps a free one.)
+      const Index keyBudget = parameters.ReserveFreeSample && budget[c] > 1 ? budget[c] - 1 : budget[c];
+      const Index keyCount = std::min<Index>(keyBudget, static_cast<Index>(keys[c].size()));
       exclude.clear();
       for (Index s = first; s < samples.Start[c + 1]; ++s)
       {
@@ -347,6 +349,13 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   for (int round = 0; inputPoints && round < parameters.CoveringRounds; ++round)
   {
     RefineCovering(P, grid, neighbors, samples, assign, execution);
+  }
+
+  // Final Lloyd iterations across cell borders.
+  for (int it = 0; it < parameters.FinalLloydIterations; ++it)
+  {
+    AssignToSamples(P, grid, neighbors, samples, assign, execution);
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
   // Clusters: every point joins its nearest sample.

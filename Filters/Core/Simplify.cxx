@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace asmcore
@@ -176,6 +177,14 @@ double VariationWeightOf(const SimplifyParameters& parameters)
   return parameters.Mode == SimplifyMode::FeaturePreserving ? std::max(0.0, parameters.VariationBudget) : 0.0;
 }
 
+double VariationCapOf(const SimplifyParameters& parameters)
+{
+  const bool feature = parameters.Mode == SimplifyMode::FeaturePreserving &&
+    parameters.Weight != WeightMode::SurfaceVariation;
+  return feature && parameters.VariationCap > 0.0 ? parameters.VariationCap
+                                                  : std::numeric_limits<double>::infinity();
+}
+
 std::vector<double> CellShares(const std::vector<Index>& capacity,
   const std::vector<double>& variation, const SimplifyParameters& parameters, double exponent)
 {
@@ -190,12 +199,13 @@ std::vector<double> CellShares(const std::vector<Index>& capacity,
   meanVariation /= static_cast<double>(std::max<Index>(1, total));
   std::vector<double> share(cells);
   const double k = VariationWeightOf(parameters);
+  const double cap = VariationCapOf(parameters);
   for (std::size_t c = 0; c < cells; ++c)
   {
     double weight = 1.0;
     if (k != 0.0 && meanVariation > 0.0)
     {
-      weight += k * variation[c] / meanVariation;
+      weight += k * std::min(cap, variation[c] / meanVariation);
     }
     const auto n = static_cast<double>(capacity[c]);
     share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));

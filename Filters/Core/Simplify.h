@@ -67,6 +67,18 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// variation, unitless) when Weight is Uniform; 0: w_c = 1. With Weight =
   /// SurfaceVariation, CurvatureWeight is k as in Paper mode.
   double VariationBudget = 1.0;
+  /// Largest sigma_c / mean(sigma) the weight counts with VariationBudget
+  /// (a cell at a cusp weighs at most 1 + k * VariationCap, so that a few
+  /// sharp cells do not draw the samples of the smooth surface away); <= 0:
+  /// no cap.
+  double VariationCap = 5.0;
+  /// A cell of two or more samples keeps at least one free (Lloyd) sample:
+  /// at most N_c - 1 of its samples are key samples (one in a cell of one).
+  bool ReserveFreeSample = true;
+  /// Lloyd iterations across cell borders after the hole filling, before
+  /// the final clusters (they tighten the clusters the hole filling moved).
+  /// Global, like FillHoles: not for distributed runs.
+  int FinalLloydIterations = 2;
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
   /// centre (the default: BoundSnappedHoles bounds the largest hole without
@@ -109,6 +121,11 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
 /// SamplesPerCell in Paper mode, FeatureSamplesPerCell (when > 0) in the
 /// feature-preserving mode; at least 1.
 VTKASMFILTERS_EXPORT double SamplesPerCellOf(const SimplifyParameters& parameters);
+
+/// The cap on sigma_c / mean(sigma) in the budget weight: VariationCap in
+/// the feature-preserving mode with VariationBudget (when > 0), else none
+/// (infinity; the paper mode's weight is Eq. 4's, uncapped).
+VTKASMFILTERS_EXPORT double VariationCapOf(const SimplifyParameters& parameters);
 
 /// k of the budget weight w_c = 1 + k * sigma_c / mean(sigma): CurvatureWeight
 /// with WeightMode::SurfaceVariation, else VariationBudget in the

@@ -41,6 +41,7 @@ asmcore::SimplifyParameters FeatureParameters()
   p.SamplesPerCell = 2.0;
   p.FillHoles = false; // global: off in distributed runs
   p.BoundSnappedHoles = false; // likewise
+  p.FinalLloydIterations = 0;  // likewise
   return p;
 }
 

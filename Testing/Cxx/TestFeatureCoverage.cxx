@@ -3,8 +3,10 @@
 // covering refinement (CoveringRounds), the budget that follows the surface
 // variation (VariationBudget) on finer cells (FeatureSamplesPerCell), tips
 // alone in sparse cells (SparseCellKeyPoints), the bound on the holes that
-// snapping leaves (BoundSnappedHoles), and the order-independent choice of a
-// sample's input point.
+// snapping leaves (BoundSnappedHoles), the order-independent choice of a
+// sample's input point, the cap on the variation weight (VariationCap), a
+// free sample in every cell of two or more (ReserveFreeSample) and the Lloyd
+// steps after the hole filling (FinalLloydIterations).
 #include "Core/Simplify.h"
 #include "Core/SnappedHoles.h"
 
@@ -293,4 +295,102 @@ TEST(FeatureCoverage, TwoPointClustersDoNotDependOnTheInputOrder)
     const auto a = SimplifyWith(pairs, 900, configure), b = SimplifyWith(reversed, 900, configure);
     EXPECT_EQ(Positions(a), Positions(b)) << "CoveringRounds " << rounds;
   }
+}
+
+TEST(FeatureCoverage, VariationCapBoundsACellsWeight)
+{
+  // Nine flat cells and one at ten times the mean variation, 100 points each.
+  const std::vector<Index> capacity(10, 100);
+  std::vector<double> variation(10, 0.0);
+  variation[9] = 0.2; // mean 0.02: ratio 10
+  asmcore::SimplifyParameters p;
+  p.VariationBudget = 1.0;
+  auto ratio = [&](const asmcore::SimplifyParameters& q) {
+    const std::vector<double> share = asmcore::CellShares(capacity, variation, q, 1.0);
+    return share[9] / share[0];
+  };
+  p.VariationCap = 5.0;
+  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 5.0); // capped
+  p.VariationCap = 20.0;
+  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 10.0); // below the cap
+  p.VariationCap = 0.0;
+  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 10.0); // no cap
+  // The paper mode's weight (Eq. 4 with WeightMode::SurfaceVariation) is not capped.
+  p.VariationCap = 5.0;
+  p.Mode = asmcore::SimplifyMode::Paper;
+  p.Weight = asmcore::WeightMode::SurfaceVariation;
+  p.CurvatureWeight = 1.0;
+  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 10.0);
+}
+
+TEST(FeatureCoverage, ReserveFreeSampleKeepsANonKeySampleInACell)
+{
+  // The corner of a cube (three faces meeting at the origin) in one cell:
+  // it holds more key points than samples.
+  Cloud c;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double a = u(rng), b = u(rng);
+    const int face = i % 3;
+    Add(c, face == 0 ? 0.0 : a, face == 1 ? 0.0 : (face == 0 ? a : b), face == 2 ? 0.0 : b);
+  }
+  auto keys = [&](Index target, bool reserve) {
+    const auto r = SimplifyWith(c, target, [reserve](auto& p) {
+      p.CellSize = 4.0;
+      p.ReserveFreeSample = reserve;
+    });
+    EXPECT_EQ(r.NumberOfCells, 1);
+    EXPECT_EQ(static_cast<Index>(r.Samples.size()), target);
+    return std::count_if(r.Samples.begin(), r.Samples.end(), [](const auto& s) { return s.Key; });
+  };
+  for (Index target : { 2, 3, 5 })
+  {
+    EXPECT_EQ(keys(target, false), target) << "without the rule, keys take the whole budget";
+    EXPECT_EQ(keys(target, true), target - 1) << target;
+  }
+  // A cell of one sample may still make it a key sample.
+  EXPECT_EQ(keys(1, true), 1);
+}
+
+TEST(FeatureCoverage, FinalLloydIterationsTightenTheClusters)
+{
+  // With centroid samples, every Lloyd step lowers the sum of squared
+  // distances from the points to their nearest sample (k-means energy).
+  Cloud c;
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i)
+  {
+    double x = g(rng), y = g(rng), z = g(rng);
+    const double n = std::sqrt(x * x + y * y + z * z);
+    x /= n, y /= n, z /= n;
+    const double r = 1.0 + 0.1 * std::sin(6.0 * x) * std::sin(5.0 * y); // bumps
+    Add(c, r * x, r * y, r * z);
+  }
+  auto energy = [&](int iterations) {
+    const auto r = SimplifyWith(c, 400, [iterations](auto& p) {
+      p.InputPointSamples = false;
+      p.BoundSnappedHoles = false;
+      p.FinalLloydIterations = iterations;
+    });
+    EXPECT_EQ(r.Samples.size(), 400u);
+    double e = 0.0;
+    for (std::size_t i = 0; i < c.size(); i += 3)
+    {
+      double best = 1e300;
+      for (const auto& s : r.Samples)
+      {
+        const double dx = c[i] - s.Position[0], dy = c[i + 1] - s.Position[1], dz = c[i + 2] - s.Position[2];
+        best = std::min(best, dx * dx + dy * dy + dz * dz);
+      }
+      e += best;
+    }
+    return e;
+  };
+  const double e0 = energy(0), e1 = energy(1), e4 = energy(4);
+  EXPECT_LT(e1, e0);
+  EXPECT_LE(e4, e1 * (1.0 + 1e-12));
+  EXPECT_LT(e4, 0.999 * e0) << e0 << " " << e1 << " " << e4;
 }

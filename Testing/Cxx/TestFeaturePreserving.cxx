@@ -177,7 +177,8 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
     [](auto& p) { p.FeatureSamplesPerCell = 8.0; }, [](auto& p) { p.VariationBudget = 0.0; },
     [](auto& p) { p.CoveringRounds = 2; }, [](auto& p) { p.SparseCellKeyPoints = false; },
-    [](auto& p) { p.BoundSnappedHoles = false; } };
+    [](auto& p) { p.BoundSnappedHoles = false; }, [](auto& p) { p.VariationCap = 0.0; },
+    [](auto& p) { p.ReserveFreeSample = false; }, [](auto& p) { p.FinalLloydIterations = 0; } };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
@@ -237,8 +238,12 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "VariationBudget", [](vtkASMSimplify* f) { f->SetVariationBudget(0.0); } },
     { "CoveringRounds", [](vtkASMSimplify* f) { f->SetCoveringRounds(2); } },
     { "BoundSnappedHolesOff", [](vtkASMSimplify* f) { f->BoundSnappedHolesOff(); } },
+    { "VariationCap", [](vtkASMSimplify* f) { f->SetVariationCap(2.0); } },
+    { "FinalLloydIterations", [](vtkASMSimplify* f) { f->SetFinalLloydIterations(0); } },
     // (SparseCellKeyPoints changes nothing on the fandisk: no tip alone in a
     // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)
+    // (Nor ReserveFreeSample at 5 %: no cell's key points fill its budget;
+    // see FeatureCoverage.ReserveFreeSampleKeepsANonKeySampleInACell.)
     { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   std::vector<std::vector<double>> results;
@@ -293,6 +298,9 @@ TEST(FeaturePreserving, DefaultModeIsFeaturePreserving)
   EXPECT_EQ(filter->GetCoveringRounds(), core.CoveringRounds);
   EXPECT_EQ(filter->GetSparseCellKeyPoints(), core.SparseCellKeyPoints);
   EXPECT_EQ(filter->GetBoundSnappedHoles(), core.BoundSnappedHoles);
+  EXPECT_EQ(filter->GetVariationCap(), core.VariationCap);
+  EXPECT_EQ(filter->GetReserveFreeSample(), core.ReserveFreeSample);
+  EXPECT_EQ(filter->GetFinalLloydIterations(), core.FinalLloydIterations);
   EXPECT_TRUE(filter->GetValidateKeyPoints());
   EXPECT_EQ(filter->GetBudgetExponent(), 0.5);
   filter->SetModeToPaper();

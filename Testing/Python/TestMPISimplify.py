@@ -14,8 +14,8 @@ that each process's halo of 7 cell rings does not cover the whole bunny;
 FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
 (one process, AlwaysDistribute off), so the serial path runs (FillHoles,
-CoveringRounds and BoundSnappedHoles off in the feature mode, as a distributed
-run has them); its output must match
+CoveringRounds, BoundSnappedHoles and FinalLloydIterations off in the feature
+mode, as a distributed run has them); its output must match
 the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
@@ -74,6 +74,7 @@ else:
         asm.FillHolesOff()
         asm.SetCoveringRounds(0)  # global too: distributed runs switch it off
         asm.BoundSnappedHolesOff()  # likewise
+        asm.SetFinalLloydIterations(0)  # likewise
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which
