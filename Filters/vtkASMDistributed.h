@@ -36,9 +36,9 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path runs FillHoles, CoveringRounds
- *    and BoundSnappedHoles (feature mode), which distributed runs do not
- *    (7), so it matches them only with those off. The automatic cell size is searched first on points
+ *    AlwaysDistribute is on; the serial path runs FillHoles, CoveringRounds,
+ *    BoundSnappedHoles and FinalLloydIterations (feature mode), which
+ *    distributed runs do not (7), so it matches them only with those off. The automatic cell size is searched first on points
  *    picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
@@ -70,7 +70,8 @@
  *    are output, with all their members (halo points included; points of
  *    owned cells that join a halo cell's sample are output by that cell's
  *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
- *    global step) and is switched off with a warning, CoveringRounds and
+ *    global step) and is switched off with a warning, CoveringRounds,
+ *    FinalLloydIterations (they would need a wider halo) and
  *    BoundSnappedHoles (the largest hole of the whole cloud) silently; points that no sample
  *    within the searched rings takes (only when some cells get no sample)
  *    join the nearest sample this process holds, which may differ from the

@@ -71,7 +71,9 @@
  * CrossCellIterations); samples placed on input points (InputPointSamples);
  * a bounded hole-filling pass (FillHoles, HoleFillFraction); finer cells
  * (FeatureSamplesPerCell) whose budget follows the surface variation
- * (VariationBudget); a bound on the largest hole that snapping to input
+ * (VariationBudget, capped by VariationCap); a free sample in every cell of
+ * two or more (ReserveFreeSample); Lloyd iterations across cells after the
+ * hole filling (FinalLloydIterations); a bound on the largest hole that snapping to input
  * points may leave (BoundSnappedHoles); and, off by default, rounds that
  * move input-point samples to cover their clusters (CoveringRounds). In this
  * mode a cluster is the set of input points nearest a sample, the count is
@@ -91,9 +93,10 @@
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
  * MPI launcher) started it, or with AlwaysDistribute; FillHoles,
- * CoveringRounds and BoundSnappedHoles (FEATURE_PRESERVING) are global and
- * switched off in distributed runs (FillHoles with a warning). The serial
- * path gives the same points too when those three are off. Design and
+ * CoveringRounds, BoundSnappedHoles and FinalLloydIterations
+ * (FEATURE_PRESERVING) are global and switched off in distributed runs
+ * (FillHoles with a warning). The serial path gives the same points too when
+ * those four are off. Design and
  * limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
@@ -308,11 +311,10 @@ public:
 
   ///@{
   /**
-   * FEATURE_PRESERVING: the largest ratio sigma_c / mean(sigma) that the
-   * VariationBudget weight counts (unitless, >= 0; 0: no cap), so that a
-   * few cusps or spikes do not draw the samples of the smooth surface
-   * away; default 5 (a cell weighs at most 1 + 5 * VariationBudget times a
-   * flat one).
+   * FEATURE_PRESERVING: the ratio r = sigma_c / mean(sigma) past which the
+   * VariationBudget weight grows as sqrt(VariationCap * r) instead of r
+   * (unitless, >= 0; 0: no cap), so that a few cusps or spikes do not draw
+   * the samples of the smooth surface away; default 5.
    */
   vtkSetClampMacro(VariationCap, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(VariationCap, double);

@@ -33,7 +33,8 @@ parser.add_argument("--fraction", type=float, default=0.01)
 parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
 parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
-parser.add_argument("--no-fill-holes", action="store_true")  # distributed runs switch it off anyway
+# FillHoles and FinalLloydIterations off: distributed runs switch them off anyway
+parser.add_argument("--no-fill-holes", action="store_true")
 parser.add_argument("--no-covering", action="store_true")  # CoveringRounds 0, as distributed runs do
 args = parser.parse_args()
 
@@ -65,6 +66,8 @@ asm.SetAlwaysDistribute(args.always_distribute)
 asm.SetGenerateCurvature(not args.no_curvature)
 asm.SetMode(vtkASMSimplify.PAPER if args.mode == "paper" else vtkASMSimplify.FEATURE_PRESERVING)
 asm.SetFillHoles(not args.no_fill_holes)
+if args.no_fill_holes:
+    asm.SetFinalLloydIterations(0)
 if args.no_covering:
     asm.SetCoveringRounds(0)
 controller.Barrier()

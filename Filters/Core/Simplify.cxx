@@ -205,7 +205,9 @@ std::vector<double> CellShares(const std::vector<Index>& capacity,
     double weight = 1.0;
     if (k != 0.0 && meanVariation > 0.0)
     {
-      weight += k * std::min(cap, variation[c] / meanVariation);
+      // Past the cap the ratio r counts as sqrt(cap * r): still growing.
+      const double r = variation[c] / meanVariation;
+      weight += k * (r > cap ? std::sqrt(cap * r) : r);
     }
     const auto n = static_cast<double>(capacity[c]);
     share[c] = weight * (exponent == 1.0 ? n : std::pow(n, exponent));

@@ -67,10 +67,10 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// variation, unitless) when Weight is Uniform; 0: w_c = 1. With Weight =
   /// SurfaceVariation, CurvatureWeight is k as in Paper mode.
   double VariationBudget = 1.0;
-  /// Largest sigma_c / mean(sigma) the weight counts with VariationBudget
-  /// (a cell at a cusp weighs at most 1 + k * VariationCap, so that a few
-  /// sharp cells do not draw the samples of the smooth surface away); <= 0:
-  /// no cap.
+  /// Ratio r = sigma_c / mean(sigma) past which the weight with
+  /// VariationBudget grows as sqrt(VariationCap * r) instead of r, so that a
+  /// few sharp cells (cusps, spikes) do not draw the samples of the smooth
+  /// surface away; <= 0: no cap.
   double VariationCap = 5.0;
   /// A cell of two or more samples keeps at least one free (Lloyd) sample:
   /// at most N_c - 1 of its samples are key samples (one in a cell of one).
@@ -122,8 +122,9 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
 /// feature-preserving mode; at least 1.
 VTKASMFILTERS_EXPORT double SamplesPerCellOf(const SimplifyParameters& parameters);
 
-/// The cap on sigma_c / mean(sigma) in the budget weight: VariationCap in
-/// the feature-preserving mode with VariationBudget (when > 0), else none
+/// The ratio sigma_c / mean(sigma) past which the budget weight grows as its
+/// square root (SimplifyParameters::VariationCap): VariationCap in the
+/// feature-preserving mode with VariationBudget (when > 0), else none
 /// (infinity; the paper mode's weight is Eq. 4's, uncapped).
 VTKASMFILTERS_EXPORT double VariationCapOf(const SimplifyParameters& parameters);
 

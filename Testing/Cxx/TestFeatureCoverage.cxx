@@ -297,7 +297,7 @@ TEST(FeatureCoverage, TwoPointClustersDoNotDependOnTheInputOrder)
   }
 }
 
-TEST(FeatureCoverage, VariationCapBoundsACellsWeight)
+TEST(FeatureCoverage, VariationCapDampsASharpCellsWeight)
 {
   // Nine flat cells and one at ten times the mean variation, 100 points each.
   const std::vector<Index> capacity(10, 100);
@@ -309,14 +309,14 @@ TEST(FeatureCoverage, VariationCapBoundsACellsWeight)
     const std::vector<double> share = asmcore::CellShares(capacity, variation, q, 1.0);
     return share[9] / share[0];
   };
-  p.VariationCap = 5.0;
-  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 5.0); // capped
+  p.VariationCap = 2.5;
+  EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 5.0); // sqrt(2.5 * 10) past the cap
   p.VariationCap = 20.0;
   EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 10.0); // below the cap
   p.VariationCap = 0.0;
   EXPECT_DOUBLE_EQ(ratio(p), 1.0 + 10.0); // no cap
   // The paper mode's weight (Eq. 4 with WeightMode::SurfaceVariation) is not capped.
-  p.VariationCap = 5.0;
+  p.VariationCap = 2.5;
   p.Mode = asmcore::SimplifyMode::Paper;
   p.Weight = asmcore::WeightMode::SurfaceVariation;
   p.CurvatureWeight = 1.0;
