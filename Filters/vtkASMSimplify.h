@@ -314,7 +314,7 @@ public:
    * FEATURE_PRESERVING: the ratio r = sigma_c / mean(sigma) past which the
    * VariationBudget weight grows as sqrt(VariationCap * r) instead of r
    * (unitless, >= 0; 0: no cap), so that a few cusps or spikes do not draw
-   * the samples of the smooth surface away; default 5.
+   * the samples of the smooth surface away; default 4.
    */
   vtkSetClampMacro(VariationCap, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(VariationCap, double);
@@ -604,7 +604,7 @@ protected:
   double HoleFillFraction = 0.02;
   double FeatureSamplesPerCell = 4.0;
   double VariationBudget = 1.0;
-  double VariationCap = 5.0;
+  double VariationCap = 4.0;
   bool ReserveFreeSample = true;
   int FinalLloydIterations = 2;
   int CoveringRounds = 0;

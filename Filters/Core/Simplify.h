@@ -71,7 +71,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// VariationBudget grows as sqrt(VariationCap * r) instead of r, so that a
   /// few sharp cells (cusps, spikes) do not draw the samples of the smooth
   /// surface away; <= 0: no cap.
-  double VariationCap = 5.0;
+  double VariationCap = 4.0;
   /// A cell of two or more samples keeps at least one free (Lloyd) sample:
   /// at most N_c - 1 of its samples are key samples (one in a cell of one).
   bool ReserveFreeSample = true;

@@ -47,7 +47,7 @@ expected_defaults = {
     "HoleFillFraction": 0.02,
     "FeatureSamplesPerCell": 4.0,
     "VariationBudget": 1.0,
-    "VariationCap": 5.0,
+    "VariationCap": 4.0,
     "ReserveFreeSample": 1,
     "FinalLloydIterations": 2,
     "CoveringRounds": 0,
