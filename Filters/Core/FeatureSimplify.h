@@ -14,16 +14,19 @@
  *     KeyPointRadius * h, neighbouring cells included (ValidateKeyPoints);
  *     a key sample sits on its extreme point (ExtremeKeyPoints);
  *  3. budget: N_c ~ w_c * n_c^BudgetExponent (from the cell's own points and
- *     the global mean of the weight; w_c = 1 + VariationBudget * sigma_c /
- *     mean(sigma)), with one sample per non-empty cell
+ *     the global mean of the weight; w_c = 1 + VariationBudget * r, r =
+ *     sigma_c / mean(sigma), counted as sqrt(VariationCap * r) past
+ *     VariationCap), with one sample per non-empty cell
  *     first when N_s allows (CoverEveryCell), exact in total;
- *  4. sampling: per cell, the most prominent key points up to N_c, then the
+ *  4. sampling: per cell, the most prominent key points up to N_c (N_c - 1
+ *     in a cell of two or more samples with ReserveFreeSample), then the
  *     free samples by farthest-point seeding and LloydIterations Lloyd
  *     iterations inside the cell with the key samples fixed (Lloyd.h);
  *  5. cross-cell refinement: CrossCellIterations Lloyd iterations across cell
  *     borders; optionally (FillHoles) a bounded hole-filling pass; with
  *     input-point samples, CoveringRounds rounds of covering refinement
- *     (Covering.h); then every point joins its nearest sample (the sample's
+ *     (Covering.h); FinalLloydIterations Lloyd iterations across cell
+ *     borders; then every point joins its nearest sample (the sample's
  *     cluster);
  *  6. output: each free sample is the input point nearest its position
  *     (InputPointSamples) or its cluster's centroid; with BoundSnappedHoles,
@@ -41,8 +44,8 @@
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
  * samples are output (vtkASMDistributed.h). The hole filling, the covering
- * refinement and the snapped-hole bound are global and are not supported in
- * distributed runs.
+ * refinement, the final Lloyd iterations and the snapped-hole bound are
+ * global and are not supported in distributed runs.
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h
