@@ -307,10 +307,15 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
 
   // 5. Cross-cell refinement.
   PointArray<SampleId> assign; // (the distances are recomputed: AssignedDistance2)
-  for (int it = 0; it < CrossIterations(parameters); ++it)
-  {
+  // One Lloyd step across cell borders: every point to its nearest sample,
+  // every sample to its cluster's centroid.
+  auto lloydStep = [&]() {
     AssignToSamples(P, grid, neighbors, samples, assign, execution);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+  };
+  for (int it = 0; it < CrossIterations(parameters); ++it)
+  {
+    lloydStep();
     if (abort(0.6 + 0.2 * (it + 1) / CrossIterations(parameters)))
     {
       return result;
@@ -354,8 +359,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // Final Lloyd iterations across cell borders.
   for (int it = 0; it < parameters.FinalLloydIterations; ++it)
   {
-    AssignToSamples(P, grid, neighbors, samples, assign, execution);
-    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+    lloydStep();
   }
 
   // Clusters: every point joins its nearest sample.
