@@ -2,6 +2,7 @@
 #include "BenchmarkMethods.h"
 
 #include "BenchmarkData.h"
+#include "BenchmarkReport.h"
 
 #include "vtkASMSimplify.h"
 #include "vtkMaskPoints.h"
@@ -136,6 +137,128 @@ const std::vector<AsmConfig>& AsmConfigurations()
   return table;
 }
 
+namespace
+{
+using Setter = bool (*)(vtkASMSimplify* filter, double value, double& held);
+
+// name -> sets the property to the value; if the property holds another
+// value then (clamped, rounded), puts the previous one back and returns
+// false, with the value it would hold in `held`.
+#define ASM_SETTING(name)                                                                          \
+  {                                                                                                \
+    #name, [](vtkASMSimplify* f, double v, double& held) {                                         \
+      const auto previous = f->Get##name();                                                        \
+      f->Set##name(static_cast<decltype(previous)>(v));                                            \
+      held = static_cast<double>(f->Get##name());                                                  \
+      if (held != v)                                                                               \
+      {                                                                                            \
+        f->Set##name(previous);                                                                    \
+        return false;                                                                              \
+      }                                                                                            \
+      return true;                                                                                 \
+    }                                                                                              \
+  }
+const std::map<std::string, Setter>& AsmSetters()
+{
+  static const std::map<std::string, Setter> setters = {
+    ASM_SETTING(ValidateKeyPoints), ASM_SETTING(KeyPointRadius), ASM_SETTING(KeyPointProminence),
+    ASM_SETTING(InPlaneKeyPoints), ASM_SETTING(ExtremeKeyPoints), ASM_SETTING(CoverEveryCell),
+    ASM_SETTING(BudgetExponent), ASM_SETTING(LloydIterations), ASM_SETTING(CrossCellIterations),
+    ASM_SETTING(InputPointSamples), ASM_SETTING(FillHoles), ASM_SETTING(HoleFillFraction),
+    ASM_SETTING(FeatureSamplesPerCell), ASM_SETTING(VariationBudget), ASM_SETTING(VariationCap),
+    ASM_SETTING(ReserveFreeSample), ASM_SETTING(FinalLloydIterations), ASM_SETTING(CoveringRounds),
+    ASM_SETTING(SparseCellKeyPoints), ASM_SETTING(BoundSnappedHoles), ASM_SETTING(CellSize),
+    ASM_SETTING(SamplesPerCell), ASM_SETTING(Alpha), ASM_SETTING(ErrorTolerance),
+    ASM_SETTING(RelativeErrorTolerance), ASM_SETTING(WeightMode), ASM_SETTING(CurvatureWeight),
+    ASM_SETTING(RandomSeed), ASM_SETTING(SnapToInputPoints), ASM_SETTING(GenerateCurvature),
+    ASM_SETTING(CurvatureNeighbors),
+  };
+  return setters;
+}
+#undef ASM_SETTING
+} // namespace
+
+std::string AsmSettingNames()
+{
+  std::string names = "Mode";
+  for (const auto& setter : AsmSetters())
+  {
+    names += ", " + setter.first;
+  }
+  return names;
+}
+
+bool ApplyAsmSettings(vtkASMSimplify* filter, const std::string& settings, std::string& error)
+{
+  for (const std::string& item : SplitList(settings))
+  {
+    const std::size_t eq = item.find('=');
+    const std::string name = item.substr(0, eq);
+    const std::string text = eq == std::string::npos ? std::string() : item.substr(eq + 1);
+    if (eq == std::string::npos || name.empty() || text.empty())
+    {
+      error = "\"" + item + "\" is not Name=value";
+      return false;
+    }
+    if (name == "Mode")
+    {
+      if (text != "paper" && text != "feature")
+      {
+        error = "Mode is paper or feature, not \"" + text + "\"";
+        return false;
+      }
+      ApplyMode(filter, text == "paper" ? AsmMode::Paper : AsmMode::FeaturePreserving);
+      continue;
+    }
+    const auto setter = AsmSetters().find(name);
+    if (setter == AsmSetters().end())
+    {
+      error = "no property " + name + " (known: " + AsmSettingNames() + ")";
+      return false;
+    }
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
+    {
+      error = name + ": \"" + text + "\" is not a number";
+      return false;
+    }
+    double held = 0.0;
+    if (!setter->second(filter, value, held))
+    {
+      error = name + "=" + text + " is not accepted (the property holds " + Format(held, 6) + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error)
+{
+  const std::size_t colon = spec.find(':');
+  if (colon == std::string::npos || colon == 0)
+  {
+    error = "\"" + spec + "\" is not NAME:SETTINGS";
+    return false;
+  }
+  config = AsmConfig{ spec.substr(0, colon), AsmMode::FeaturePreserving, false, spec.substr(colon + 1), true };
+  for (const AsmConfig& standard : AsmConfigurations())
+  {
+    if (standard.Name == config.Name)
+    {
+      error = "\"" + config.Name + "\" is the name of a standard configuration";
+      return false;
+    }
+  }
+  vtkNew<vtkASMSimplify> probe; // the settings are checked once here
+  if (!ApplyAsmSettings(probe.Get(), config.Settings, error))
+  {
+    return false;
+  }
+  config.Mode = probe->GetMode() == vtkASMSimplify::PAPER ? AsmMode::Paper : AsmMode::FeaturePreserving;
+  return true;
+}
+
 bool AsmModeAvailable(AsmMode mode)
 {
   vtkNew<vtkASMSimplify> probe;
@@ -213,6 +336,12 @@ Method MakeAsm(vtkPolyData* input, vtkIdType target, const AsmConfig& config)
   asmFilter->SetTargetModeToNumberOfOutputPoints();
   asmFilter->SetNumberOfOutputPoints(target);
   asmFilter->SetGenerateCurvature(config.Curvature);
+  std::string error;
+  if (!ApplyAsmSettings(asmFilter.Get(), config.Settings, error))
+  {
+    std::cerr << config.Name << ": " << error << "\n";
+    return m; // (ParseAsmVariant checked the settings already)
+  }
   m.Run = [asmFilter](bool keep) { return RunFilter(asmFilter, keep); };
   return m;
 }

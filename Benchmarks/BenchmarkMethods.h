@@ -17,6 +17,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+class vtkASMSimplify;
+
 #include <array>
 #include <functional>
 #include <string>
@@ -36,11 +38,30 @@ struct AsmConfig
 {
   std::string Name;
   AsmMode Mode;
-  bool Curvature; ///< GenerateCurvature
+  bool Curvature;       ///< GenerateCurvature
+  std::string Settings; ///< more properties, "Name=value,..." (ApplyAsmSettings)
+  /// A user's variant (--asm): measured and reported, but not one of the
+  /// methods the targets compare the modes with.
+  bool Variant = false;
 };
 
 /// Both modes, curvature off and on.
 const std::vector<AsmConfig>& AsmConfigurations();
+
+/// Sets properties of `filter` from "Name=value,..." (e.g.
+/// "FillHoles=0,FinalLloydIterations=1"): any numeric or on/off property of
+/// vtkASMSimplify (AsmSettingNames), booleans as 0/1, Mode as paper or
+/// feature. An unknown name, a value that is not a number or one the
+/// property clamps to another value is an error (returned in `error`; that
+/// property keeps its value, and no later setting is applied).
+bool ApplyAsmSettings(vtkASMSimplify* filter, const std::string& settings, std::string& error);
+
+/// The property names ApplyAsmSettings knows, comma separated.
+std::string AsmSettingNames();
+
+/// A variant from "NAME:SETTINGS" (--asm): the default mode (or the paper
+/// mode with Mode=paper) with those settings, curvature off.
+bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error);
 
 /// Whether this build's vtkASMSimplify can run `mode`: PAPER always (before
 /// the Mode property exists, the one pipeline is the paper's), the others only

@@ -8,7 +8,12 @@
  *
  *   asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]
  *                       [--fractions 0.05,0.01,0.2] [--inputs spec,...]
- *                       [--no-memory] [--markdown] [more inputs ...]
+ *                       [--no-memory] [--markdown] [--asm NAME:SETTINGS ...]
+ *                       [more inputs ...]
+ *
+ * --asm adds a row for vtkASMSimplify with more properties set (the default
+ * mode unless Mode=paper; ApplyAsmSettings), e.g. --asm "ASM fast:FillHoles=0";
+ * the targets block checks "ASM default" and "ASM paper" only.
  *
  * --readme: the README's run, sized for ~15 minutes on 2 idle cores: bunny,
  * bunny-scans (../shared/data), bumps at 100k, 1M, 4M, 14M; N_s = 5 % (and 1 %,
@@ -48,10 +53,12 @@ void Usage()
 {
   std::cout << "usage: asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]\n"
                "                           [--fractions 0.05,0.01,0.2] [--inputs spec,...]\n"
-               "                           [--no-memory] [--markdown] [input ...]\n"
+               "                           [--no-memory] [--markdown] [--asm NAME:SETTINGS ...] [input ...]\n"
                "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n"
                "--readme: the README's run (~15 min on 2 idle cores): bunny, bunny-scans, bumps 100k..14M,\n"
-               "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n";
+               "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
+               "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
+               "       (the default mode with those properties; Mode=paper for the paper mode)\n";
 }
 
 /// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
@@ -321,6 +328,7 @@ int main(int argc, char* argv[])
   int runs = 5;
   bool markdown = false, memory = true, readme = false;
   std::vector<std::string> extra;
+  std::vector<AsmConfig> configs = AsmConfigurations(); // and the variants (--asm)
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -371,6 +379,17 @@ int main(int argc, char* argv[])
       {
         threads.push_back(std::max(1, std::atoi(t.c_str())));
       }
+    }
+    else if (arg == "--asm" && hasValue)
+    {
+      AsmConfig variant;
+      std::string error;
+      if (!ParseAsmVariant(argv[++i], variant, error))
+      {
+        std::cerr << "--asm: " << error << "\n";
+        return 2;
+      }
+      configs.push_back(variant);
     }
     else if (arg.compare(0, 2, "--") == 0)
     {
@@ -444,7 +463,7 @@ int main(int argc, char* argv[])
       const vtkIdType target = std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
       SetThreads(threads.back());
       std::vector<Method> methods;
-      for (const AsmConfig& c : AsmConfigurations())
+      for (const AsmConfig& c : configs)
       {
         if (c.Curvature && !job.Curvature)
         {
