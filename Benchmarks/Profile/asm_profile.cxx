@@ -8,7 +8,11 @@
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages]
  *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
+ *               [--set Name=value,...]
  *
+ * --set sets more properties of vtkASMSimplify by name, as the benchmarks'
+ * --asm does (asmbench::ApplyAsmSettings; e.g. --set FillHoles=0); it needs
+ * the benchmarks' support library (built unless the benchmarks are off).
  * --mode picks vtkASMSimplify's Mode (default: the filter's default,
  * FEATURE_PRESERVING).
  * --arrays attaches a scan's usual point data to the input (RGB colour as
@@ -31,6 +35,9 @@
 #include "Core/Neighbors.h"
 #include "Core/Simplify.h"
 #include "vtkASMFilterUtilities.h"
+#ifdef ASM_PROFILE_SETTINGS
+#include "BenchmarkMethods.h"
+#endif
 #include "vtkASMSimplify.h"
 
 #include "vtkFloatArray.h"
@@ -322,6 +329,7 @@ int main(int argc, char* argv[])
   const char* ply = nullptr;
   const char* dump = nullptr;
   int mode = -1;
+  std::string settings;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -340,6 +348,8 @@ int main(int argc, char* argv[])
       dump = next, ++i;
     else if (a == "--mode")
       mode = std::string(next) == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING, ++i;
+    else if (a == "--set")
+      settings = next, ++i;
     else if (a == "--curvature")
       curvature = true;
     else if (a == "--coherent")
@@ -353,6 +363,26 @@ int main(int argc, char* argv[])
       std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
       return 2;
     }
+  }
+  // The settings are applied to every run's filter; checked here once.
+  auto applySettings = [&settings](vtkASMSimplify* filter) {
+    if (settings.empty())
+      return true;
+#ifdef ASM_PROFILE_SETTINGS
+    std::string error;
+    if (asmbench::ApplyAsmSettings(filter, settings, error))
+      return true;
+    std::fprintf(stderr, "--set: %s\n", error.c_str());
+#else
+    (void)filter;
+    std::fprintf(stderr, "--set needs the benchmarks (ASM_BUILD_BENCHMARKS)\n");
+#endif
+    return false;
+  };
+  {
+    vtkNew<vtkASMSimplify> probe;
+    if (!applySettings(probe))
+      return 2;
   }
   if (ply)
     sizes = { 0 };
@@ -392,6 +422,7 @@ int main(int argc, char* argv[])
         filter->SetGenerateCurvature(curvature);
         if (mode >= 0)
           filter->SetMode(mode);
+        applySettings(filter);
         malloc_trim(0);
         ResetPeak();
         const long base = StatusKB("VmRSS:");
