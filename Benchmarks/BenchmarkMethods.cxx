@@ -259,6 +259,19 @@ bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& er
   return true;
 }
 
+bool AddAsmVariant(const std::string& spec, std::vector<AsmConfig>& configs)
+{
+  AsmConfig variant;
+  std::string error;
+  if (!ParseAsmVariant(spec, variant, error))
+  {
+    std::cerr << "--asm: " << error << "\n";
+    return false;
+  }
+  configs.push_back(variant);
+  return true;
+}
+
 bool AsmModeAvailable(AsmMode mode)
 {
   vtkNew<vtkASMSimplify> probe;

@@ -63,6 +63,10 @@ std::string AsmSettingNames();
 /// mode with Mode=paper) with those settings, curvature off.
 bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error);
 
+/// The programs' --asm: ParseAsmVariant(spec) appended to `configs`; false
+/// (the error printed to stderr) when the variant is refused.
+bool AddAsmVariant(const std::string& spec, std::vector<AsmConfig>& configs);
+
 /// Whether this build's vtkASMSimplify can run `mode`: PAPER always (before
 /// the Mode property exists, the one pipeline is the paper's), the others only
 /// when vtkASMSimplify has SetModeToPaper()/SetModeToFeaturePreserving().

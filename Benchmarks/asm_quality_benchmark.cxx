@@ -250,14 +250,10 @@ int main(int argc, char* argv[])
     }
     else if (arg == "--asm" && i + 1 < argc)
     {
-      AsmConfig variant;
-      std::string error;
-      if (!ParseAsmVariant(argv[++i], variant, error))
+      if (!AddAsmVariant(argv[++i], variants))
       {
-        std::cerr << "--asm: " << error << "\n";
         return 2;
       }
-      variants.push_back(variant);
     }
     else if (arg.compare(0, 2, "--") == 0)
     {

@@ -382,14 +382,10 @@ int main(int argc, char* argv[])
     }
     else if (arg == "--asm" && hasValue)
     {
-      AsmConfig variant;
-      std::string error;
-      if (!ParseAsmVariant(argv[++i], variant, error))
+      if (!AddAsmVariant(argv[++i], configs))
       {
-        std::cerr << "--asm: " << error << "\n";
         return 2;
       }
-      configs.push_back(variant);
     }
     else if (arg.compare(0, 2, "--") == 0)
     {
