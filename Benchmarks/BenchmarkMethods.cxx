@@ -268,6 +268,14 @@ bool AddAsmVariant(const std::string& spec, std::vector<AsmConfig>& configs)
     std::cerr << "--asm: " << error << "\n";
     return false;
   }
+  for (const AsmConfig& c : configs)
+  {
+    if (c.Name == variant.Name)
+    {
+      std::cerr << "--asm: a second configuration named \"" << variant.Name << "\"\n";
+      return false;
+    }
+  }
   configs.push_back(variant);
   return true;
 }

@@ -17,12 +17,12 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-class vtkASMSimplify;
-
 #include <array>
 #include <functional>
 #include <string>
 #include <vector>
+
+class vtkASMSimplify;
 
 namespace asmbench
 {
@@ -64,7 +64,8 @@ std::string AsmSettingNames();
 bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error);
 
 /// The programs' --asm: ParseAsmVariant(spec) appended to `configs`; false
-/// (the error printed to stderr) when the variant is refused.
+/// (the error printed to stderr) when the variant is refused, or when a
+/// configuration of that name is in `configs` already.
 bool AddAsmVariant(const std::string& spec, std::vector<AsmConfig>& configs);
 
 /// Whether this build's vtkASMSimplify can run `mode`: PAPER always (before

@@ -68,6 +68,13 @@ TEST(BenchmarkSettings, VariantsAreParsed)
   EXPECT_FALSE(ParseAsmVariant(":FillHoles=0", config, error));         // empty name
   EXPECT_FALSE(ParseAsmVariant("ASM default:FillHoles=0", config, error)); // a standard name
   EXPECT_FALSE(ParseAsmVariant("x:FillHoles=maybe", config, error));
+  // The programs' --asm: appended once per name.
+  std::vector<AsmConfig> configs;
+  EXPECT_TRUE(AddAsmVariant("fast:FillHoles=0", configs));
+  EXPECT_FALSE(AddAsmVariant("fast:FinalLloydIterations=0", configs));
+  EXPECT_FALSE(AddAsmVariant("bad:Nope=1", configs));
+  ASSERT_EQ(configs.size(), 1u);
+  EXPECT_EQ(configs[0].Settings, "FillHoles=0");
 }
 
 TEST(BenchmarkSettings, AVariantRunsWithItsSettingsOnly)
