@@ -120,9 +120,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
   // Distributed runs (Simplify.h): the budgets come from CellBudget.
-  const Index target = parameters.CellBudget
-    ? total
-    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  const Index target = SampleTarget(parameters, total);
   if (total == 0 || target == 0)
   {
     return result;

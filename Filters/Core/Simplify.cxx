@@ -161,6 +161,12 @@ std::uint64_t CellSeed(std::uint64_t seed, std::uint64_t cellKey)
 }
 } // namespace
 
+Index SampleTarget(const SimplifyParameters& parameters, Index total)
+{
+  return parameters.CellBudget ? total
+                               : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+}
+
 double SamplesPerCellOf(const SimplifyParameters& parameters)
 {
   const bool feature = parameters.Mode == SimplifyMode::FeaturePreserving;
@@ -272,9 +278,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
 {
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
-  const Index target = parameters.CellBudget
-    ? total
-    : std::max<Index>(0, std::min(parameters.NumberOfSamples, total));
+  const Index target = SampleTarget(parameters, total);
   if (total == 0 || target == 0)
   {
     return result;

@@ -117,6 +117,11 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   ///@}
 };
 
+/// The number of samples a run of `total` valid points produces:
+/// NumberOfSamples clamped to [0, total], or `total` (an upper bound) when
+/// CellBudget gives the budgets (distributed runs).
+VTKASMFILTERS_EXPORT Index SampleTarget(const SimplifyParameters& parameters, Index total);
+
 /// The mean budget per non-empty cell the automatic cell size aims at:
 /// SamplesPerCell in Paper mode, FeatureSamplesPerCell (when > 0) in the
 /// feature-preserving mode; at least 1.
