@@ -166,7 +166,7 @@ const std::map<std::string, Setter>& AsmSetters()
     ASM_SETTING(BudgetExponent), ASM_SETTING(LloydIterations), ASM_SETTING(CrossCellIterations),
     ASM_SETTING(InputPointSamples), ASM_SETTING(FillHoles), ASM_SETTING(HoleFillFraction),
     ASM_SETTING(FeatureSamplesPerCell), ASM_SETTING(VariationBudget), ASM_SETTING(VariationCap),
-    ASM_SETTING(ReserveFreeSample), ASM_SETTING(FinalLloydIterations), ASM_SETTING(CoveringRounds),
+    ASM_SETTING(ReserveFreeSample), ASM_SETTING(FinalLloydIterations), ASM_SETTING(LloydVariationWeight), ASM_SETTING(CoveringRounds),
     ASM_SETTING(SparseCellKeyPoints), ASM_SETTING(BoundSnappedHoles), ASM_SETTING(CellSize),
     ASM_SETTING(SamplesPerCell), ASM_SETTING(Alpha), ASM_SETTING(ErrorTolerance),
     ASM_SETTING(RelativeErrorTolerance), ASM_SETTING(WeightMode), ASM_SETTING(CurvatureWeight),

@@ -204,6 +204,7 @@ int vtkASMSimplify::RequestData(
   parameters.ReserveFreeSample = this->ReserveFreeSample;
   // Lloyd steps over the whole cloud after the hole filling: not distributed.
   parameters.FinalLloydIterations = distributed ? 0 : this->FinalLloydIterations;
+  parameters.LloydVariationWeight = this->LloydVariationWeight;
   // Covering refinement moves samples across the halo: not distributed.
   parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
   parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
@@ -465,6 +466,7 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VariationCap: " << this->VariationCap << "\n";
   os << indent << "ReserveFreeSample: " << this->ReserveFreeSample << "\n";
   os << indent << "FinalLloydIterations: " << this->FinalLloydIterations << "\n";
+  os << indent << "LloydVariationWeight: " << this->LloydVariationWeight << "\n";
   os << indent << "CoveringRounds: " << this->CoveringRounds << "\n";
   os << indent << "BoundSnappedHoles: " << this->BoundSnappedHoles << "\n";
   os << indent << "SparseCellKeyPoints: " << this->SparseCellKeyPoints << "\n";

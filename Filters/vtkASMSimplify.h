@@ -347,6 +347,22 @@ public:
 
   ///@{
   /**
+   * FEATURE_PRESERVING: weight k of the final Lloyd iterations'
+   * (FinalLloydIterations) variation-weighted assignment: a point joins the
+   * sample s that minimises m_s |p - s|^2, with m_s = 1 + k min(VariationCap,
+   * sigma_s / mean(sigma)), sigma_s the surface variation of the sample's
+   * cluster before the iteration (unitless, >= 0). Samples of creased or
+   * curved clusters take smaller clusters, so the samples crowd towards
+   * creases and curved bands (lower point-to-plane error there) instead of
+   * spreading evenly over their cell's ring. 0: plain Lloyd iterations.
+   * Default 0.75. Global like FinalLloydIterations.
+   */
+  vtkSetClampMacro(LloydVariationWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LloydVariationWeight, double);
+  ///@}
+
+  ///@{
+  /**
    * FEATURE_PRESERVING, with InputPointSamples or SnapToInputPoints: rounds
    * of covering refinement, in [0, 8]; default 0. A round moves every
    * non-key sample to the member of its cluster whose farthest member is
@@ -609,6 +625,7 @@ protected:
   double VariationCap = 4.0;
   bool ReserveFreeSample = true;
   int FinalLloydIterations = 2;
+  double LloydVariationWeight = 0.75;
   int CoveringRounds = 0;
   bool SparseCellKeyPoints = true;
   bool BoundSnappedHoles = true;

@@ -16,7 +16,8 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 /// AssignToSamples for the points of a cell that owns many samples: a k-d
 /// tree of the ring's samples (ties: lower index, as the brute-force search).
 void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, Index c, PointArray<SampleId>& assign, std::vector<Index>& ringSamples)
+  const SampleSet& samples, Index c, PointArray<SampleId>& assign, std::vector<Index>& ringSamples,
+  const double* scale = nullptr)
 {
   ringSamples.clear();
   for (int k = 0; k < 27; ++k)
@@ -28,6 +29,28 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
     }
   }
   const double* pos = samples.Position.data();
+  if (scale)
+  {
+    // (Weighted: every ring sample, in increasing order; ties: lower index.)
+    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+    {
+      double p[3];
+      xyz.Get(grid.PointAt(i), p);
+      Index best = -1;
+      double bestD = Infinity;
+      for (Index s : ringSamples)
+      {
+        const double d = scale[s] * SquaredDistance(p, pos + 3 * s);
+        if (d < bestD || (d == bestD && s < best))
+        {
+          bestD = d;
+          best = s;
+        }
+      }
+      assign[i] = static_cast<SampleId>(best);
+    }
+    return;
+  }
   const Neighbors tree(pos, ringSamples);
   for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
   {
@@ -38,8 +61,12 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
 } // namespace
 
 void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution)
+  const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution,
+  const double* scale)
 {
+  // (With scale >= 1, scale * d^2 >= d^2 >= the squared box gap: the
+  // pruning of pass 2 holds as it is.)
+  auto weighted = [scale](Index s, double d) { return scale ? scale[s] * d : d; };
   assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
@@ -51,7 +78,7 @@ void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
       const Index first = samples.Start[c], last = samples.Start[c + 1];
       if (last - first > LargeCellBudget)
       {
-        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, ringSamples);
+        AssignLargeCell(xyz, grid, neighbors, samples, c, assign, ringSamples, scale);
         continue;
       }
       // Pass 1: the nearest of the cell's own samples, and the farthest any
@@ -67,7 +94,7 @@ void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
         double bestD = Infinity;
         for (Index s = first; s < last; ++s)
         {
-          const double d = SquaredDistance(p, pos + 3 * s);
+          const double d = weighted(s, SquaredDistance(p, pos + 3 * s));
           if (d < bestD)
           {
             bestD = d;
@@ -131,7 +158,7 @@ void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
             break;
           }
           const Index s = candidate.second;
-          const double d = SquaredDistance(p, pos + 3 * s);
+          const double d = weighted(s, SquaredDistance(p, pos + 3 * s));
           if (d < bestD || (d == bestD && s < best))
           {
             bestD = d;

@@ -22,9 +22,12 @@ namespace asmcore
 /// those cells owns a sample. The squared distance the search compared is
 /// AssignedDistance2 (recomputed where it is needed: no array of 8 bytes per
 /// point).
+/// With `scale` (one factor >= 1 per sample), the distance compared is
+/// scale[s] * |p - s|^2 (a multiplicatively weighted Voronoi partition:
+/// a sample of larger scale takes a smaller cluster).
 VTKASMFILTERS_EXPORT void AssignToSamples(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, PointArray<SampleId>& assign,
-  const Execution& execution);
+  const Execution& execution, const double* scale = nullptr);
 
 /// The squared distance from the point in slot i to its sample (infinity
 /// without one), bit for bit the value the assignment compared, as long as

@@ -357,7 +357,29 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // Final Lloyd iterations across cell borders.
   for (int it = 0; it < parameters.FinalLloydIterations; ++it)
   {
-    lloydStep();
+    if (parameters.LloydVariationWeight > 0.0)
+    {
+      // Variation-weighted: the clusters' variations from the plain
+      // assignment, then the weighted one (m_s >= 1: see AssignToSamples).
+      AssignToSamples(P, grid, neighbors, samples, assign, execution);
+      const std::vector<double> variation =
+        ClusterVariations(P, grid, neighbors, assign, samples, execution);
+      std::vector<double> scale(variation.size(), 1.0);
+      const double mean = std::accumulate(variation.begin(), variation.end(), 0.0) /
+        static_cast<double>(std::max<std::size_t>(1, variation.size()));
+      const double cap = parameters.VariationCap > 0.0 ? parameters.VariationCap
+                                                        : std::numeric_limits<double>::infinity();
+      for (std::size_t s = 0; mean > 0.0 && s < variation.size(); ++s)
+      {
+        scale[s] = 1.0 + parameters.LloydVariationWeight * std::min(cap, variation[s] / mean);
+      }
+      AssignToSamples(P, grid, neighbors, samples, assign, execution, scale.data());
+      MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+    }
+    else
+    {
+      lloydStep();
+    }
   }
 
   // Clusters: every point joins its nearest sample.

@@ -2,6 +2,8 @@
 #include "Lloyd.h"
 
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -139,15 +141,19 @@ void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
   }
 }
 
-void MoveToCentroids(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const PointArray<SampleId>& assign, SampleSet& samples, const Execution& execution)
+namespace
 {
-  // The points assigned to a cell's samples lie in its ring (the assignment
-  // searches rings, which are symmetric). A chunk of cells scans the union
-  // of its cells' rings once, in increasing cell order, which is each ring's
-  // visiting order: every sample sums its points in the same order as a scan
-  // of its own ring would. Only the chunk's own samples are written, and no
-  // sample position is read: the positions are updated in place.
+// Visits, for every chunk of owner cells [b, e), the points assigned to the
+// chunk's samples: the chunk scans the union of its cells' rings once, in
+// increasing cell order, which is each ring's visiting order, so that every
+// sample sees its points in the same order as a scan of its own ring would.
+// begin(firstSample, owned) starts a chunk, visit(s - firstSample, slot)
+// is called per point, end() finishes it.
+template <typename Begin, typename Visit, typename End>
+void ScanOwnedClusters(const CellGrid& grid, const CellNeighborTable& neighbors,
+  const PointArray<SampleId>& assign, const SampleSet& samples, const Execution& execution,
+  const Begin& begin, const Visit& visit, const End& end)
+{
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
     const Index firstSample = samples.Start[b], lastSample = samples.Start[e];
     if (lastSample == firstSample)
@@ -188,8 +194,7 @@ void MoveToCentroids(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
       }
     }
     const Index owned = lastSample - firstSample;
-    std::vector<double> sum(static_cast<std::size_t>(3 * owned), 0.0);
-    std::vector<Index> count(static_cast<std::size_t>(owned), 0);
+    auto state = begin(firstSample, owned);
     for (Index nb = lo; nb <= hi; ++nb)
     {
       if (!inRing[nb - lo])
@@ -201,26 +206,109 @@ void MoveToCentroids(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
         const Index s = assign[i] - firstSample;
         if (s >= 0 && s < owned)
         {
-          double p[3];
-          xyz.Get(grid.PointAt(i), p);
-          ++count[s];
+          visit(state, s, grid.PointAt(i));
+        }
+      }
+    }
+    end(state, firstSample, owned);
+  });
+}
+} // namespace
+
+void MoveToCentroids(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const PointArray<SampleId>& assign, SampleSet& samples, const Execution& execution)
+{
+  // Only the chunk's own samples are written, and no sample position is
+  // read: the positions are updated in place.
+  struct Sums
+  {
+    std::vector<double> Sum;
+    std::vector<Index> Count;
+  };
+  ScanOwnedClusters(
+    grid, neighbors, assign, samples, execution,
+    [](Index, Index owned) {
+      return Sums{ std::vector<double>(static_cast<std::size_t>(3 * owned), 0.0),
+        std::vector<Index>(static_cast<std::size_t>(owned), 0) };
+    },
+    [&](Sums& sums, Index s, Index point) {
+      double p[3];
+      xyz.Get(point, p);
+      ++sums.Count[s];
+      for (int a = 0; a < 3; ++a)
+      {
+        sums.Sum[3 * s + a] += p[a];
+      }
+    },
+    [&](Sums& sums, Index firstSample, Index owned) {
+      for (Index s = 0; s < owned; ++s)
+      {
+        if (!samples.Fixed[firstSample + s] && sums.Count[s] > 0)
+        {
           for (int a = 0; a < 3; ++a)
           {
-            sum[3 * s + a] += p[a];
+            samples.Position[3 * (firstSample + s) + a] =
+              sums.Sum[3 * s + a] / static_cast<double>(sums.Count[s]);
           }
         }
       }
-    }
-    for (Index s = 0; s < owned; ++s)
-    {
-      if (!samples.Fixed[firstSample + s] && count[s] > 0)
+    });
+}
+
+std::vector<double> ClusterVariations(Coordinates xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, const SampleSet& samples,
+  const Execution& execution)
+{
+  std::vector<double> variation(static_cast<std::size_t>(samples.Size()), 0.0);
+  // Moments about the sample's position (near its points: no cancellation).
+  struct Moments
+  {
+    Index First;
+    std::vector<double> M; // per sample: count, sum d, sum d d^T (6)
+  };
+  ScanOwnedClusters(
+    grid, neighbors, assign, samples, execution,
+    [](Index firstSample, Index owned) {
+      return Moments{ firstSample, std::vector<double>(static_cast<std::size_t>(10 * owned), 0.0) };
+    },
+    [&](Moments& m, Index s, Index point) {
+      double p[3];
+      xyz.Get(point, p);
+      const double* o = samples.Position.data() + 3 * (m.First + s);
+      const double d[3] = { p[0] - o[0], p[1] - o[1], p[2] - o[2] };
+      double* q = m.M.data() + 10 * s;
+      q[0] += 1.0;
+      q[1] += d[0];
+      q[2] += d[1];
+      q[3] += d[2];
+      q[4] += d[0] * d[0];
+      q[5] += d[0] * d[1];
+      q[6] += d[0] * d[2];
+      q[7] += d[1] * d[1];
+      q[8] += d[1] * d[2];
+      q[9] += d[2] * d[2];
+    },
+    [&](Moments& m, Index firstSample, Index owned) {
+      for (Index s = 0; s < owned; ++s)
       {
-        for (int a = 0; a < 3; ++a)
+        const double* q = m.M.data() + 10 * s;
+        const double n = q[0];
+        if (n < 3.0)
         {
-          samples.Position[3 * (firstSample + s) + a] = sum[3 * s + a] / static_cast<double>(count[s]);
+          continue;
         }
+        const Eigen::Vector3d c(q[1] / n, q[2] / n, q[3] / n);
+        Eigen::Matrix3d cov;
+        cov << q[4] / n, q[5] / n, q[6] / n, q[5] / n, q[7] / n, q[8] / n, q[6] / n, q[8] / n,
+          q[9] / n;
+        cov -= c * c.transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+        solver.computeDirect(cov, Eigen::EigenvaluesOnly);
+        const Eigen::Vector3d lambda = solver.eigenvalues().cwiseMax(0.0);
+        const double trace = lambda.sum();
+        variation[firstSample + s] = trace > 0.0 ? lambda[0] / trace : 0.0;
       }
-    }
-  });
+    });
+  return variation;
 }
 } // namespace asmcore

@@ -87,6 +87,13 @@ VTKASMFILTERS_EXPORT void MoveToCentroids(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, SampleSet& samples,
   const Execution& execution);
 
+/// The surface variation lambda_0 / (lambda_0 + lambda_1 + lambda_2) of
+/// every sample's cluster (the points assigned to it; 0 for fewer than 3
+/// points), per sample.
+VTKASMFILTERS_EXPORT std::vector<double> ClusterVariations(Coordinates xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, const SampleSet& samples,
+  const Execution& execution);
+
 } // namespace asmcore
 
 #endif

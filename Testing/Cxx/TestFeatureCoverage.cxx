@@ -165,6 +165,7 @@ TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
       p.CoveringRounds = k;
       p.FillHoles = false;          // the refinement alone
       p.BoundSnappedHoles = false;
+      p.LloydVariationWeight = 0.0; // (the weighted final Lloyd steps crowd creases, not holes)
     });
   };
   const auto none = rounds(0), one = rounds(1), two = rounds(2), four = rounds(4);

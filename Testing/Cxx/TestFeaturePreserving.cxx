@@ -240,6 +240,7 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     { "BoundSnappedHolesOff", [](vtkASMSimplify* f) { f->BoundSnappedHolesOff(); } },
     { "VariationCap", [](vtkASMSimplify* f) { f->SetVariationCap(2.0); } },
     { "FinalLloydIterations", [](vtkASMSimplify* f) { f->SetFinalLloydIterations(0); } },
+    { "LloydVariationWeight", [](vtkASMSimplify* f) { f->SetLloydVariationWeight(0.0); } },
     // (SparseCellKeyPoints changes nothing on the fandisk: no tip alone in a
     // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)
     // (Nor ReserveFreeSample at 5 %: no cell's key points fill its budget;

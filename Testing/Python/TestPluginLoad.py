@@ -50,6 +50,7 @@ expected_defaults = {
     "VariationCap": 4.0,
     "ReserveFreeSample": 1,
     "FinalLloydIterations": 2,
+    "LloydVariationWeight": 0.75,
     "CoveringRounds": 0,
     "SparseCellKeyPoints": 1,
     "BoundSnappedHoles": 1,
