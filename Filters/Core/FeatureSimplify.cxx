@@ -354,32 +354,29 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     RefineCovering(P, grid, neighbors, samples, assign, execution);
   }
 
-  // Final Lloyd iterations across cell borders.
+  // Final Lloyd iterations across cell borders. With LloydVariationWeight
+  // each point joins the sample of least m_s |p - s|^2, m_s from the
+  // variation of s's plain cluster: the first iteration measures it on the
+  // assignment the steps above left (a sample moved since by one Lloyd step
+  // at most), the next ones assign again first (weights measured on the
+  // weighted clusters would keep shrinking the same samples).
   for (int it = 0; it < parameters.FinalLloydIterations; ++it)
   {
+    std::vector<double> scale;
     if (parameters.LloydVariationWeight > 0.0)
     {
-      // Variation-weighted: the clusters' variations from the plain
-      // assignment, then the weighted one (m_s >= 1: see AssignToSamples).
-      AssignToSamples(P, grid, neighbors, samples, assign, execution);
-      const std::vector<double> variation =
-        ClusterVariations(P, grid, neighbors, assign, samples, execution);
-      std::vector<double> scale(variation.size(), 1.0);
-      const double mean = std::accumulate(variation.begin(), variation.end(), 0.0) /
-        static_cast<double>(std::max<std::size_t>(1, variation.size()));
-      const double cap = parameters.VariationCap > 0.0 ? parameters.VariationCap
-                                                        : std::numeric_limits<double>::infinity();
-      for (std::size_t s = 0; mean > 0.0 && s < variation.size(); ++s)
+      if (it > 0 || assign.size() != static_cast<std::size_t>(grid.NumberOfPoints()))
       {
-        scale[s] = 1.0 + parameters.LloydVariationWeight * std::min(cap, variation[s] / mean);
+        AssignToSamples(P, grid, neighbors, samples, assign, execution);
       }
-      AssignToSamples(P, grid, neighbors, samples, assign, execution, scale.data());
-      MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+      scale = VariationScales(ClusterVariations(P, grid, neighbors, assign, samples, execution),
+        parameters.LloydVariationWeight,
+        parameters.VariationCap > 0.0 ? parameters.VariationCap
+                                      : std::numeric_limits<double>::infinity());
     }
-    else
-    {
-      lloydStep();
-    }
+    AssignToSamples(
+      P, grid, neighbors, samples, assign, execution, scale.empty() ? nullptr : scale.data());
+    MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
   // Clusters: every point joins its nearest sample.

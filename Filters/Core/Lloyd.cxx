@@ -311,4 +311,20 @@ std::vector<double> ClusterVariations(Coordinates xyz, const CellGrid& grid,
     });
   return variation;
 }
+
+std::vector<double> VariationScales(const std::vector<double>& variation, double weight, double cap)
+{
+  std::vector<double> scale(variation.size(), 1.0);
+  double mean = 0.0;
+  for (double v : variation)
+  {
+    mean += v;
+  }
+  mean /= static_cast<double>(std::max<std::size_t>(1, variation.size()));
+  for (std::size_t s = 0; mean > 0.0 && s < variation.size(); ++s)
+  {
+    scale[s] = 1.0 + weight * std::min(cap, variation[s] / mean);
+  }
+  return scale;
+}
 } // namespace asmcore

@@ -94,6 +94,12 @@ VTKASMFILTERS_EXPORT std::vector<double> ClusterVariations(Coordinates xyz, cons
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, const SampleSet& samples,
   const Execution& execution);
 
+/// The factors of a variation-weighted assignment (AssignToSamples' scale):
+/// per sample 1 + weight * min(cap, variation[s] / mean(variation)); all 1
+/// when the mean is 0. The mean is summed in sample order (deterministic).
+VTKASMFILTERS_EXPORT std::vector<double> VariationScales(
+  const std::vector<double>& variation, double weight, double cap);
+
 } // namespace asmcore
 
 #endif

@@ -81,9 +81,11 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   int FinalLloydIterations = 2;
   /// k of the final Lloyd iterations' weighted assignment: a point joins
   /// the sample s of least m_s |p - s|^2, m_s = 1 + k min(VariationCap,
-  /// sigma_s / mean(sigma)), sigma_s the surface variation of s's cluster
-  /// (before the step); the samples crowd towards creases and curved bands,
-  /// which the per-cell budget alone spreads over its cell. 0: Euclidean.
+  /// sigma_s / mean(sigma)), sigma_s the surface variation of s's plain
+  /// (Euclidean) cluster before the iteration (the first iteration reuses
+  /// the assignment the steps before left, the next ones assign again); the
+  /// samples crowd towards creases and curved bands, which the per-cell
+  /// budget alone spreads over its cell. 0: Euclidean.
   double LloydVariationWeight = 0.75;
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
