@@ -29,29 +29,38 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
     }
   }
   const double* pos = samples.Position.data();
+  const Neighbors tree(pos, ringSamples);
   if (scale)
   {
-    // (Weighted: every ring sample, in increasing order; ties: lower index.)
+    // Weighted (factors >= 1): the plain nearest sample s0 at d0 bounds the
+    // answer's weighted distance by scale[s0] d0^2, so the answer lies within
+    // d0 sqrt(scale[s0]) (widened against rounding); the least weighted
+    // distance among those, ties: the lower index.
+    std::vector<Index> near;
     for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
     {
       double p[3];
       xyz.Get(grid.PointAt(i), p);
+      const NearestPoint nearest = tree.Nearest(p);
       Index best = -1;
       double bestD = Infinity;
-      for (Index s : ringSamples)
+      if (nearest.Id >= 0)
       {
-        const double d = scale[s] * SquaredDistance(p, pos + 3 * s);
-        if (d < bestD || (d == bestD && s < best))
+        tree.Radius(p, nearest.Distance * std::sqrt(scale[nearest.Id]) * (1.0 + 1e-9), near);
+        for (Index s : near)
         {
-          bestD = d;
-          best = s;
+          const double d = scale[s] * SquaredDistance(p, pos + 3 * s);
+          if (d < bestD || (d == bestD && s < best))
+          {
+            bestD = d;
+            best = s;
+          }
         }
       }
       assign[i] = static_cast<SampleId>(best);
     }
     return;
   }
-  const Neighbors tree(pos, ringSamples);
   for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
   {
     const NearestPoint nearest = tree.Nearest(xyz.At(grid.PointAt(i)).data());

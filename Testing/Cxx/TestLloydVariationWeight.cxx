@@ -97,6 +97,54 @@ TEST(LloydVariationWeight, WeightedAssignmentSplitsWhereTheWeightedDistancesMeet
   EXPECT_TRUE(std::equal(plain.begin(), plain.end(), same.begin()));
 }
 
+TEST(LloydVariationWeight, WeightedAssignmentIsTheLeastWeightedDistance)
+{
+  // One cell owning 40 samples (the two-pass search) or 100 (more than
+  // LargeCellBudget: the k-d tree search), random factors in [1, 4]: every
+  // point gets the sample of least scale * d^2 (ties: the lower index).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Cloud c;
+  for (int i = 0; i < 3000; ++i)
+  {
+    asmtest::Add(c, u(rng), u(rng), 0.01 * u(rng));
+  }
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, 2.0);
+  ASSERT_EQ(gridded.Grid.NumberOfCells(), 1);
+  for (const Index count : { Index(40), Index(100) })
+  {
+    asmcore::SampleSet samples;
+    std::vector<double> scale;
+    for (Index s = 0; s < count; ++s)
+    {
+      const double* p = c.data() + 3 * (7 * s);
+      samples.Position.insert(samples.Position.end(), p, p + 3);
+      samples.Fixed.push_back(0);
+      scale.push_back(1.0 + 3.0 * u(rng));
+    }
+    samples.Start = { 0, count };
+    asmcore::PointArray<asmcore::SampleId> assign;
+    asmcore::AssignToSamples(c.data(), gridded.Grid, gridded.Neighbors, samples, assign,
+      asmtest::UnevenTwoThreads(), scale.data());
+    for (Index slot = 0; slot < gridded.Grid.NumberOfPoints(); ++slot)
+    {
+      const double* p = c.data() + 3 * gridded.Grid.PointAt(slot);
+      Index best = -1;
+      double bestD = std::numeric_limits<double>::infinity();
+      for (Index s = 0; s < count; ++s)
+      {
+        const double d = scale[s] * asmcore::SquaredDistance(p, samples.Position.data() + 3 * s);
+        if (d < bestD)
+        {
+          bestD = d;
+          best = s;
+        }
+      }
+      ASSERT_EQ(assign[slot], best) << count << " samples, slot " << slot;
+    }
+  }
+}
+
 TEST(LloydVariationWeight, ClusterVariationIsZeroOnAPlaneAndLargeAcrossACrease)
 {
   const Cloud roof = Roof(120, 3);
