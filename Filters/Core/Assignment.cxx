@@ -67,15 +67,16 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
     assign[i] = static_cast<SampleId>(nearest.Id);
   }
 }
-} // namespace
 
-void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+// The two passes of AssignToSamples, comparing weighted(s, d^2) (a template,
+// so that the plain passes carry no test of `scale`). With scale >= 1,
+// scale * d^2 >= d^2 >= the squared box gap: the pruning of pass 2 holds as
+// it is.
+template <typename Weighted>
+void AssignPasses(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution,
-  const double* scale)
+  const double* scale, const Weighted& weighted)
 {
-  // (With scale >= 1, scale * d^2 >= d^2 >= the squared box gap: the
-  // pruning of pass 2 holds as it is.)
-  auto weighted = [scale](Index s, double d) { return scale ? scale[s] * d : d; };
   assign.resize(static_cast<std::size_t>(grid.NumberOfPoints()));
   const double* pos = samples.Position.data();
   execution.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
@@ -178,6 +179,24 @@ void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
       }
     }
   });
+}
+
+} // namespace
+
+void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, PointArray<SampleId>& assign, const Execution& execution,
+  const double* scale)
+{
+  if (scale)
+  {
+    AssignPasses(xyz, grid, neighbors, samples, assign, execution, scale,
+      [scale](Index s, double d2) { return scale[s] * d2; });
+  }
+  else
+  {
+    AssignPasses(xyz, grid, neighbors, samples, assign, execution, scale,
+      [](Index, double d2) { return d2; });
+  }
 }
 
 void UpdateAssignment(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Lloyd.h"
 
-
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -144,9 +143,11 @@ void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
 namespace
 {
 // Visits, for every chunk of owner cells [b, e), the points assigned to the
-// chunk's samples: the chunk scans the union of its cells' rings once, in
-// increasing cell order, which is each ring's visiting order, so that every
-// sample sees its points in the same order as a scan of its own ring would.
+// chunk's samples. Those points lie in their owner cells' rings (every
+// assignment, weighted or not, searches rings, which are symmetric), so the
+// chunk scans the union of its cells' rings once, in increasing cell order,
+// which is each ring's visiting order: every sample sees its points in the
+// same order as a scan of its own ring would.
 // begin(firstSample, owned) starts a chunk, visit(s - firstSample, slot)
 // is called per point, end() finishes it.
 template <typename Begin, typename Visit, typename End>
