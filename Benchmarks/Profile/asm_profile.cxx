@@ -6,7 +6,7 @@
  * or reads a PLY, and times vtkASMSimplify::Update() end to end.
  *
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
- *               [--fraction F] [--curvature] [--ply file] [--stages]
+ *               [--fraction F] [--curvature] [--ply file] [--stages] [--floor]
  *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
  *               [--set Name=value,...]
  *
@@ -20,6 +20,9 @@
  * their aggregation shows (it is the difference to a run without).
  * --coherent sorts the synthetic points along a Morton curve (scan-like
  * memory order; default: random order, the worst case for gathers).
+ * --floor times the floor of any grid simplifier with a target count on
+ * the input: bounds, one occupancy count, the grid and one pass over the
+ * cells (floats in place, one thread).
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
@@ -284,6 +287,60 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   }
   std::printf("    kd-tree build (curvature), best of 3 %8.1f ms\n", 1e3 * kd);
 }
+
+// The floor of a grid simplifier with a target count, on this input (its
+// own coordinates, floats in place, one thread, best of 3): the bounds, one
+// occupancy count (the least a search for the cell size can do), the grid
+// (hash + counting sort) and one pass over every cell's points (a centroid
+// per cell) -- what the grouping alone costs, before any of ASM's per-cell
+// steps.
+void TimeFloor(vtkPolyData* input, double fraction)
+{
+  using namespace asmcore;
+  std::unique_ptr<double[]> copy;
+  asmcore::PointIds idList;
+  asmcore::IdView ids;
+  const Coordinates xyz =
+    asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids, true, true);
+  const auto n = static_cast<double>(ids.size());
+  const double cellSize =
+    AutomaticCellSize(xyz, ids, ComputeBounds(xyz, ids), fraction * n / 8.0);
+  double best[5] = { 1e9, 1e9, 1e9, 1e9, 1e9 };
+  double sum = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t0 = Cpu();
+    const Bounds bounds = ComputeBounds(xyz, ids);
+    const double t1 = Cpu();
+    const GridSpec spec = GridSpec::Make(bounds, cellSize);
+    sum += static_cast<double>(CountOccupiedCells(xyz, ids, spec));
+    const double t2 = Cpu();
+    const CellGrid grid = BuildCellGrid(xyz, ids, spec);
+    const double t3 = Cpu();
+    for (Index c = 0; c < grid.NumberOfCells(); ++c)
+    {
+      double centroid[3] = { 0, 0, 0 };
+      for (Index id : grid.CellIds(c))
+      {
+        double p[3];
+        xyz.Get(id, p);
+        for (int a = 0; a < 3; ++a)
+          centroid[a] += p[a];
+      }
+      sum += centroid[0] + centroid[1] + centroid[2];
+    }
+    const double t4 = Cpu();
+    const double part[5] = { t1 - t0, t2 - t1, t3 - t2, t4 - t3, t4 - t0 };
+    for (int k = 0; k < 5; ++k)
+      best[k] = std::min(best[k], part[k]);
+  }
+  const double ns = 1e9 / n;
+  volatile double sink = sum; // (the centroids are computed, not optimised away)
+  (void)sink;
+  std::printf("  floor (1 thread, best of 3, ns per point): bounds %.1f, one occupancy count %.1f, "
+              "grid %.1f, a pass over the cells %.1f; in all %.1f ns = %.1f M pt/s\n",
+    ns * best[0], ns * best[1], ns * best[2], ns * best[3], ns * best[4], n / best[4] / 1e6);
+}
 } // namespace
 
 // RGB colour, intensity and normals, as a scanner writes them (values from
@@ -325,7 +382,7 @@ int main(int argc, char* argv[])
   std::vector<long> threads = { 1 };
   int runs = 3;
   double fraction = 0.05;
-  bool curvature = false, stages = false, coherent = false, arrays = false;
+  bool curvature = false, stages = false, coherent = false, arrays = false, floor = false;
   const char* ply = nullptr;
   const char* dump = nullptr;
   int mode = -1;
@@ -358,6 +415,8 @@ int main(int argc, char* argv[])
       arrays = true;
     else if (a == "--stages")
       stages = true;
+    else if (a == "--floor")
+      floor = true;
     else
     {
       std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
@@ -408,6 +467,8 @@ int main(int argc, char* argv[])
       AddScanArrays(input);
     if (stages)
       TimeStages(input, fraction, mode);
+    if (floor)
+      TimeFloor(input, fraction);
     for (long t : threads)
     {
       vtkSMPTools::Initialize(static_cast<int>(t));
