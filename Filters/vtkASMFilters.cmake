@@ -28,6 +28,7 @@ set(ASM_FILTERS_CORE
   KeyPoints
   Budget
   Simplify
+  PaperSimplify
   Unclaimed
   CellNeighbors
   FeatureKeyPoints

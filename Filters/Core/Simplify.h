@@ -2,7 +2,9 @@
 /**
  * The ASM driver (paper §3.2, §3.3, §3.5): grid hashing, per-cell PCA,
  * budgets (Eq. 4), key points with the error bound (Eq. 5), and the
- * combination with sampling, producing exactly N_s samples.
+ * combination with sampling, producing exactly N_s samples. The parameters,
+ * the result, and the steps both modes share; the modes' pipelines are in
+ * PaperSimplify.h and FeatureSimplify.h.
  */
 #ifndef asm_core_Simplify_h
 #define asm_core_Simplify_h
