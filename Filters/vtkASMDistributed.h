@@ -36,9 +36,9 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path runs FillHoles, CoveringRounds,
- *    BoundSnappedHoles and FinalLloydIterations (feature mode), which
- *    distributed runs do not (7), so it matches them only with those off. The automatic cell size is searched first on points
+ *    AlwaysDistribute is on; the serial path runs FillHoles, CoveringRounds
+ *    and FinalLloydIterations (feature mode), which distributed runs do not
+ *    (7), so it matches them only with those off. The automatic cell size is searched first on points
  *    picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
@@ -70,9 +70,11 @@
  *    are output, with all their members (halo points included; points of
  *    owned cells that join a halo cell's sample are output by that cell's
  *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
- *    global step) and is switched off with a warning, CoveringRounds,
- *    FinalLloydIterations (they would need a wider halo) and
- *    BoundSnappedHoles (the largest hole of the whole cloud) silently; points that no sample
+ *    global step) and is switched off with a warning, CoveringRounds and
+ *    FinalLloydIterations (they would need a wider halo) silently.
+ *    BoundSnappedHoles, whose bound is the largest hole of the whole cloud,
+ *    runs after the core, over all processes (BoundSnappedHolesAcross).
+ *    Points that no sample
  *    within the searched rings takes (only when some cells get no sample)
  *    join the nearest sample this process holds, which may differ from the
  *    global nearest; an empty-cluster repair that chains over more than two
@@ -241,6 +243,18 @@ struct SimplifyShare
 /// Collective (feature mode): every process's owned cells and budgets into
 /// share.AllKeys / AllBudgets on every process (a few numbers per cell).
 void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
+
+/// Feature mode, BoundSnappedHoles (collective, after the core's run on every
+/// process, which left the bound out): the bound of the whole cloud from
+/// every process's samples (asmcore::SnappedHoles.h, in steps: the largest
+/// reach of the samples that stay, reduced over the processes; every
+/// process's candidates gathered and scanned widest first, ties by
+/// position), then each process moves its own samples in `result` (whose
+/// members are ids into `xyz`, as the core returned them). The result is
+/// the serial run's except for candidates of exactly equal reach and
+/// position.
+void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz,
+  asmcore::SimplifyResult& result, const asmcore::Execution& execution);
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the
 /// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,

@@ -7,10 +7,12 @@
 
 #include "Core/Budget.h"
 #include "Core/FeatureSimplify.h"
+#include "Core/SnappedHoles.h"
 
 #include "vtkMultiProcessController.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 namespace asmvtk
@@ -80,5 +82,62 @@ Index SimplifyShare::TrueBudgetOf(std::uint64_t key) const
 bool SimplifyShare::Owns(std::uint64_t key) const
 {
   return std::binary_search(this->OwnedKeys.begin(), this->OwnedKeys.end(), key);
+}
+
+void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz,
+  asmcore::SimplifyResult& result, const asmcore::Execution& execution)
+{
+  // This process's samples as BoundSnappedHoles takes them (the core laid
+  // out each sample's members after the previous one's).
+  const auto count = static_cast<Index>(result.Samples.size());
+  std::vector<Index> memberStart(static_cast<std::size_t>(count) + 1, 0);
+  std::vector<char> snapped(static_cast<std::size_t>(count), 0);
+  std::vector<double> positions(static_cast<std::size_t>(3 * count));
+  for (Index s = 0; s < count; ++s)
+  {
+    const asmcore::Sample& sample = result.Samples[s];
+    memberStart[s] = sample.MemberBegin;
+    memberStart[s + 1] = sample.MemberBegin + sample.ClusterSize;
+    // (Key samples stay on their extreme point; a one-point cluster is its point.)
+    snapped[s] = !sample.Key && sample.ClusterSize > 1;
+    std::copy_n(sample.Position, 3, positions.data() + 3 * s);
+  }
+  const Index* members = result.Members.data();
+  const std::vector<double> reach =
+    asmcore::SnappedReaches(xyz, memberStart, members, positions.data(), execution);
+  const double start = comm.Max(asmcore::FixedReach(reach, snapped));
+  const std::vector<asmcore::SnapCandidate> mine = asmcore::SnapCandidates(
+    xyz, memberStart, members, snapped, reach, start, positions.data(), execution);
+  // Every process's candidates: (reach, radius, position).
+  std::vector<double> values;
+  values.reserve(5 * mine.size());
+  for (const asmcore::SnapCandidate& c : mine)
+  {
+    const double* p = positions.data() + 3 * c.Sample;
+    values.insert(values.end(), { c.Reach, c.Radius, p[0], p[1], p[2] });
+  }
+  const std::vector<double> all = comm.AllGather(values);
+  std::vector<std::array<double, 5>> sorted(all.size() / 5);
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+  {
+    std::copy_n(all.data() + 5 * k, 5, sorted[k].data());
+  }
+  // Widest first; ties by position (the same order on every process).
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+    return a[0] > b[0] ||
+      (a[0] == b[0] && std::lexicographical_compare(a.begin() + 2, a.end(), b.begin() + 2, b.end()));
+  });
+  std::vector<std::pair<double, double>> reachAndRadius(sorted.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+  {
+    reachAndRadius[k] = { sorted[k][0], sorted[k][1] };
+  }
+  const double limit = asmcore::SnapBound(start, reachAndRadius);
+  asmcore::MoveSnappedSamples(
+    xyz, memberStart, members, mine, limit, positions.data(), execution);
+  for (const asmcore::SnapCandidate& c : mine)
+  {
+    std::copy_n(positions.data() + 3 * c.Sample, 3, result.Samples[c.Sample].Position);
+  }
 }
 } // namespace asmvtk

@@ -208,7 +208,8 @@ int vtkASMSimplify::RequestData(
   // Covering refinement moves samples across the halo: not distributed.
   parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
   parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
-  // The bound is the largest hole of the whole cloud: not distributed.
+  // The bound is the largest hole of the whole cloud: distributed runs take
+  // it after the core's run, over all processes (BoundSnappedHolesAcross).
   parameters.BoundSnappedHoles = distributed ? false : this->BoundSnappedHoles;
   vtkPointData* inPD = input->GetPointData();
   asmvtk::SimplifyShare share;
@@ -313,6 +314,13 @@ int vtkASMSimplify::RequestData(
                        "mode (Mode = PAPER). The output is empty.");
     }
     return 1;
+  }
+  if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving &&
+    this->BoundSnappedHoles && this->InputPointSamples && !this->SnapToInputPoints)
+  {
+    // (Collective: every process got here, none aborted.)
+    const double at = this->GenerateCurvature ? 0.7 : 0.9;
+    asmvtk::BoundSnappedHolesAcross(comm, xyz, result, asmvtk::SMPExecution(this, at, at, threads));
   }
   if (this->CellSize > 0.0 && result.CellSize > this->CellSize)
   {

@@ -93,10 +93,10 @@
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
  * MPI launcher) started it, or with AlwaysDistribute; FillHoles,
- * CoveringRounds, BoundSnappedHoles and FinalLloydIterations
- * (FEATURE_PRESERVING) are global and switched off in distributed runs
- * (FillHoles with a warning). The serial path gives the same points too when
- * those four are off. Design and
+ * CoveringRounds and FinalLloydIterations (FEATURE_PRESERVING) are global
+ * and switched off in distributed runs (FillHoles with a warning), and
+ * BoundSnappedHoles runs over all processes. The serial path gives the same
+ * points too when those three are off. Design and
  * limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
@@ -401,8 +401,9 @@ public:
    * minimax centres (key samples where they are) moves from its input point
    * towards that centre, just far enough to reach no farther; default on.
    * Only those samples (at 20 %: 4-16 %) leave the input points;
-   * their vtkOriginalPointIds is still the input point they left. Global
-   * like FillHoles: distributed runs switch it off.
+   * their vtkOriginalPointIds is still the input point they left. The
+   * bound is the largest hole of the whole cloud: distributed runs take it
+   * over all processes.
    */
   vtkSetMacro(BoundSnappedHoles, bool);
   vtkGetMacro(BoundSnappedHoles, bool);

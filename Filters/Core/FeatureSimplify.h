@@ -44,8 +44,10 @@
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
  * samples are output (vtkASMDistributed.h). The hole filling, the covering
- * refinement, the final Lloyd iterations and the snapped-hole bound are
- * global and are not supported in distributed runs.
+ * refinement and the final Lloyd iterations are global and are not
+ * supported in distributed runs; the snapped-hole bound is global too, and
+ * a distributed driver takes it after this function, over all processes
+ * (SnappedHoles.h: BoundSnappedHoles off here).
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h

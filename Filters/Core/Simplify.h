@@ -104,7 +104,8 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// their samples at (about) their minimax centres (key samples where they
   /// are) moves towards that centre, just far enough: snapping never makes
   /// the largest hole larger, and only those samples (at 20 %: 4-16 %) leave
-  /// the input points. Global, like FillHoles: not for distributed runs.
+  /// the input points. Global: a distributed driver sets it off and takes
+  /// the bound over all processes after the run (SnappedHoles.h).
   bool BoundSnappedHoles = true;
 
   /// @name Distributed runs (vtkASMDistributed); all unset in a serial run.

@@ -64,110 +64,178 @@ double MinimaxCentre(
   return best;
 }
 
-void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart, const Index* members,
-  const std::vector<char>& snapped, double* positions, const Execution& execution)
+namespace
 {
-  const Index count = static_cast<Index>(snapped.size());
-  auto membersOf = [&](Index s) { return members + memberStart[s]; };
-  auto sizeOf = [&](Index s) { return memberStart[s + 1] - memberStart[s]; };
-  std::vector<double> reach(static_cast<std::size_t>(count), 0.0); // squared, from the sample
+// Moves the sample at `position` from there towards `to` only as far as
+// `limit` (a squared reach) needs: the reach along the segment is convex,
+// so bisection.
+void MoveWithinBound(Coordinates xyz, const Index* first, Index n, const double* to,
+  double limit, double* position)
+{
+  const double from[3] = { position[0], position[1], position[2] };
+  auto at = [&](double t, double p[3]) {
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = from[a] + t * (to[a] - from[a]);
+    }
+  };
+  double lo = 0.0, hi = 1.0; // reach above the bound at lo, within it at hi
+  for (int step = 0; step < 20; ++step)
+  {
+    const double mid = 0.5 * (lo + hi);
+    double p[3];
+    at(mid, p);
+    (SquaredReach(xyz, first, n, p) > limit ? lo : hi) = mid;
+  }
+  at(hi, position);
+}
+} // namespace
+
+std::vector<double> SnappedReaches(Coordinates xyz, const std::vector<Index>& memberStart,
+  const Index* members, const double* positions, const Execution& execution)
+{
+  const Index count = static_cast<Index>(memberStart.size()) - 1;
+  std::vector<double> reach(static_cast<std::size_t>(std::max<Index>(count, 0)), 0.0);
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
-      reach[s] = SquaredReach(xyz, membersOf(s), sizeOf(s), positions + 3 * s);
+      reach[s] = SquaredReach(
+        xyz, members + memberStart[s], memberStart[s + 1] - memberStart[s], positions + 3 * s);
     }
   });
-  double limit = 0.0; // squared largest hole so far
-  for (Index s = 0; s < count; ++s)
+  return reach;
+}
+
+double FixedReach(const std::vector<double>& reach, const std::vector<char>& snapped)
+{
+  double limit = 0.0;
+  for (std::size_t s = 0; s < reach.size(); ++s)
   {
     if (!snapped[s])
     {
       limit = std::max(limit, reach[s]);
     }
   }
-  // Only those that reach past the fixed samples can move or raise the bound:
-  // widest first (ties: lower index), sorted in parallel.
-  std::vector<RankedValue> ranked;
-  for (Index s = 0; s < count; ++s)
+  return limit;
+}
+
+std::vector<SnapCandidate> SnapCandidates(Coordinates xyz, const std::vector<Index>& memberStart,
+  const Index* members, const std::vector<char>& snapped, const std::vector<double>& reach,
+  double start, const double* positions, const Execution& execution)
+{
+  std::vector<SnapCandidate> candidates;
+  for (std::size_t s = 0; s < reach.size(); ++s)
   {
-    if (snapped[s] && reach[s] > limit)
+    if (snapped[s] && reach[s] > start)
     {
-      ranked.emplace_back(reach[s], s);
+      SnapCandidate c;
+      c.Sample = static_cast<Index>(s);
+      c.Reach = reach[s];
+      candidates.push_back(c);
     }
   }
-  SortRanked(ranked, execution);
-  std::vector<Index> order(ranked.size());
-  for (std::size_t k = 0; k < ranked.size(); ++k)
+  execution.Run(0, static_cast<Index>(candidates.size()), [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k)
+    {
+      SnapCandidate& c = candidates[k];
+      const Index s = c.Sample;
+      c.Radius = MinimaxCentre(xyz, members + memberStart[s], memberStart[s + 1] - memberStart[s],
+        positions + 3 * s, c.Centre);
+    }
+  });
+  return candidates;
+}
+
+double SnapBound(double start, const std::vector<std::pair<double, double>>& reachAndRadius)
+{
+  double limit = start;
+  for (const auto& candidate : reachAndRadius)
   {
-    order[k] = ranked[k].second;
-  }
-  // Widest first, in batches whose centres are computed in parallel; the
-  // bound takes them in order, up to the first cluster within it.
-  const Index batch = 256;
-  std::vector<double> centre(static_cast<std::size_t>(3 * batch)), radius(static_cast<std::size_t>(batch));
-  std::vector<std::pair<Index, std::array<double, 3>>> moves;
-  bool done = false;
-  for (Index begin = 0; begin < static_cast<Index>(order.size()) && !done; begin += batch)
-  {
-    const Index end = std::min<Index>(static_cast<Index>(order.size()), begin + batch);
-    if (!(reach[order[begin]] > limit))
+    if (!(candidate.first > limit))
     {
       break;
     }
-    execution.Run(begin, end, [&](Index b, Index e) {
+    limit = std::max(limit, candidate.second);
+  }
+  return limit;
+}
+
+void MoveSnappedSamples(Coordinates xyz, const std::vector<Index>& memberStart,
+  const Index* members, const std::vector<SnapCandidate>& candidates, double limit,
+  double* positions, const Execution& execution)
+{
+  execution.Run(0, static_cast<Index>(candidates.size()), [&](Index b, Index e) {
+    for (Index k = b; k < e; ++k)
+    {
+      const SnapCandidate& c = candidates[k];
+      if (c.Reach > limit)
+      {
+        const Index s = c.Sample;
+        MoveWithinBound(xyz, members + memberStart[s], memberStart[s + 1] - memberStart[s],
+          c.Centre, limit, positions + 3 * s);
+      }
+    }
+  });
+}
+
+void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart, const Index* members,
+  const std::vector<char>& snapped, double* positions, const Execution& execution)
+{
+  const std::vector<double> reach =
+    SnappedReaches(xyz, memberStart, members, positions, execution);
+  double limit = FixedReach(reach, snapped); // squared largest hole so far
+  // Only those that reach past the fixed samples can move or raise the bound:
+  // widest first (ties: lower index), sorted in parallel.
+  std::vector<RankedValue> ranked;
+  for (std::size_t s = 0; s < reach.size(); ++s)
+  {
+    if (snapped[s] && reach[s] > limit)
+    {
+      ranked.emplace_back(reach[s], static_cast<Index>(s));
+    }
+  }
+  SortRanked(ranked, execution);
+  // Widest first, in batches whose centres are computed in parallel (the
+  // bound takes them in order, up to the first cluster within it: the
+  // others need no centre).
+  const Index batch = 256;
+  std::vector<SnapCandidate> moves;
+  for (std::size_t begin = 0; begin < ranked.size(); begin += batch)
+  {
+    if (!(ranked[begin].first > limit))
+    {
+      break;
+    }
+    const std::size_t end = std::min(ranked.size(), begin + static_cast<std::size_t>(batch));
+    std::vector<SnapCandidate> part(end - begin);
+    execution.Run(0, static_cast<Index>(part.size()), [&](Index b, Index e) {
       for (Index k = b; k < e; ++k)
       {
-        const Index s = order[k];
-        radius[k - begin] = MinimaxCentre(
-          xyz, membersOf(s), sizeOf(s), positions + 3 * s, centre.data() + 3 * (k - begin));
+        SnapCandidate& c = part[k];
+        c.Sample = ranked[begin + static_cast<std::size_t>(k)].second;
+        c.Reach = reach[c.Sample];
+        c.Radius = MinimaxCentre(xyz, members + memberStart[c.Sample],
+          memberStart[c.Sample + 1] - memberStart[c.Sample], positions + 3 * c.Sample, c.Centre);
       }
     });
-    for (Index k = begin; k < end; ++k)
+    bool done = false;
+    for (const SnapCandidate& c : part)
     {
-      if (!(reach[order[k]] > limit))
+      if (!(c.Reach > limit))
       {
         done = true;
         break;
       }
-      limit = std::max(limit, radius[k - begin]);
-      const double* c = centre.data() + 3 * (k - begin);
-      moves.push_back({ order[k], { c[0], c[1], c[2] } });
+      limit = std::max(limit, c.Radius);
+      moves.push_back(c);
+    }
+    if (done)
+    {
+      break;
     }
   }
   // Each of those moves from its input point towards its centre only as far
-  // as the bound needs (the reach along the segment is convex: bisection).
-  execution.Run(0, static_cast<Index>(moves.size()), [&](Index b, Index e) {
-    for (Index k = b; k < e; ++k)
-    {
-      const Index s = moves[k].first;
-      if (!(reach[s] > limit))
-      {
-        continue;
-      }
-      double* position = positions + 3 * s;
-      const double* from = position;
-      const double* to = moves[k].second.data();
-      auto at = [&](double t, double p[3]) {
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] = from[a] + t * (to[a] - from[a]);
-        }
-      };
-      auto reachAt = [&](double t) {
-        double p[3];
-        at(t, p);
-        return SquaredReach(xyz, membersOf(s), sizeOf(s), p);
-      };
-      double lo = 0.0, hi = 1.0; // reach above the bound at lo, within it at hi
-      for (int step = 0; step < 20; ++step)
-      {
-        const double mid = 0.5 * (lo + hi);
-        (reachAt(mid) > limit ? lo : hi) = mid;
-      }
-      double p[3];
-      at(hi, p);
-      std::copy_n(p, 3, position);
-    }
-  });
+  // as the bound needs.
+  MoveSnappedSamples(xyz, memberStart, members, moves, limit, positions, execution);
 }
 } // namespace asmcore

@@ -12,13 +12,24 @@
  * (key points, centroids) where they are; the samples whose cluster reaches
  * past it move from their input point towards their centre, just far enough.
  * So snapping never makes the largest hole larger, and only those samples
- * leave the input points. Global (the bound is a maximum over the cloud),
- * so not for distributed runs.
+ * leave the input points.
+ *
+ * The bound is a maximum over the whole cloud. For samples spread over
+ * several processes (distributed runs) it is taken in steps, each process
+ * on its own samples: the reaches (SnappedReaches) and the largest reach of
+ * the samples that stay (FixedReach), whose maximum over the processes
+ * starts the bound; the candidates reaching past it, with their centres
+ * (SnapCandidates); the bound from every process's candidates, widest first
+ * (SnapBound); and the moves (MoveSnappedSamples). BoundSnappedHoles is
+ * those steps on one set of samples (computing only the centres it needs).
  */
 #ifndef asm_core_SnappedHoles_h
 #define asm_core_SnappedHoles_h
 
 #include "Simplify.h"
+
+#include <utility>
+#include <vector>
 
 namespace asmcore
 {
@@ -38,6 +49,48 @@ VTKASMFILTERS_EXPORT double MinimaxCentre(
 /// the thread count.
 VTKASMFILTERS_EXPORT void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart,
   const Index* members, const std::vector<char>& snapped, double* positions,
+  const Execution& execution = {});
+
+/// A sample that may move: its squared reach from its position, the
+/// squared radius of its cluster about its (approximate) minimax centre,
+/// and that centre.
+struct VTKASMFILTERS_EXPORT SnapCandidate
+{
+  Index Sample = -1;
+  double Reach = 0.0;
+  double Radius = 0.0;
+  double Centre[3] = { 0, 0, 0 };
+};
+
+/// The squared reach of every sample's cluster from its position (samples
+/// and clusters as in BoundSnappedHoles).
+VTKASMFILTERS_EXPORT std::vector<double> SnappedReaches(Coordinates xyz,
+  const std::vector<Index>& memberStart, const Index* members, const double* positions,
+  const Execution& execution = {});
+
+/// The largest of `reach` over the samples not flagged in `snapped` (0 for
+/// none): where the bound starts.
+VTKASMFILTERS_EXPORT double FixedReach(
+  const std::vector<double>& reach, const std::vector<char>& snapped);
+
+/// The snapped samples whose reach exceeds `start`, in sample order, each
+/// with its centre and radius.
+VTKASMFILTERS_EXPORT std::vector<SnapCandidate> SnapCandidates(Coordinates xyz,
+  const std::vector<Index>& memberStart, const Index* members, const std::vector<char>& snapped,
+  const std::vector<double>& reach, double start, const double* positions,
+  const Execution& execution = {});
+
+/// The bound (a squared reach) from its start and the candidates' (reach,
+/// radius), widest first: each candidate that still reaches past the bound
+/// raises it to its radius; the first that does not ends the scan.
+VTKASMFILTERS_EXPORT double SnapBound(
+  double start, const std::vector<std::pair<double, double>>& reachAndRadius);
+
+/// Moves the candidates that reach past `limit` towards their centres, just
+/// far enough.
+VTKASMFILTERS_EXPORT void MoveSnappedSamples(Coordinates xyz,
+  const std::vector<Index>& memberStart, const Index* members,
+  const std::vector<SnapCandidate>& candidates, double limit, double* positions,
   const Execution& execution = {});
 } // namespace asmcore
 

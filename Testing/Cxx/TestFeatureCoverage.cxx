@@ -153,6 +153,80 @@ TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
   }
 }
 
+TEST(FeatureCoverage, BoundSnappedHolesInStepsOverPartsIsTheWholeBound)
+{
+  // Distributed runs take the bound after the core, in steps, each process on
+  // its own samples (vtkASMDistributed.h, BoundSnappedHolesAcross). Here the
+  // samples of one result are split into two parts (interleaved) and the
+  // steps run part by part: the positions must be those of the whole bound
+  // applied in the core.
+  const Cloud cloud = Sphere(6000, 1.0, 3);
+  const Index n = static_cast<Index>(cloud.size() / 3), target = n / 5;
+  const auto unbounded = SimplifyWith(cloud, target, [](auto& p) { p.BoundSnappedHoles = false; });
+  const auto bounded = SimplifyWith(cloud, target, [](auto& p) { p.BoundSnappedHoles = true; });
+  ASSERT_EQ(unbounded.Samples.size(), bounded.Samples.size());
+  const asmcore::Coordinates xyz(cloud.data());
+  struct Part
+  {
+    std::vector<Index> Samples, MemberStart{ 0 }, Members;
+    std::vector<char> Snapped;
+    std::vector<double> Positions;
+  };
+  Part parts[2];
+  for (std::size_t k = 0; k < unbounded.Samples.size(); ++k)
+  {
+    const asmcore::Sample& s = unbounded.Samples[k];
+    Part& part = parts[k % 2];
+    part.Samples.push_back(static_cast<Index>(k));
+    part.Members.insert(part.Members.end(), unbounded.Members.begin() + s.MemberBegin,
+      unbounded.Members.begin() + s.MemberBegin + s.ClusterSize);
+    part.MemberStart.push_back(static_cast<Index>(part.Members.size()));
+    part.Snapped.push_back(!s.Key && s.ClusterSize > 1 ? 1 : 0);
+    part.Positions.insert(part.Positions.end(), s.Position, s.Position + 3);
+  }
+  // Step 1 on each part; the start is the larger of the two.
+  std::vector<double> reach[2];
+  double start = 0.0;
+  for (int q = 0; q < 2; ++q)
+  {
+    reach[q] = asmcore::SnappedReaches(
+      xyz, parts[q].MemberStart, parts[q].Members.data(), parts[q].Positions.data());
+    start = std::max(start, asmcore::FixedReach(reach[q], parts[q].Snapped));
+  }
+  // Step 2: each part's candidates, then the bound from both, widest first.
+  std::vector<asmcore::SnapCandidate> candidates[2];
+  std::vector<std::pair<double, double>> all;
+  for (int q = 0; q < 2; ++q)
+  {
+    candidates[q] = asmcore::SnapCandidates(xyz, parts[q].MemberStart, parts[q].Members.data(),
+      parts[q].Snapped, reach[q], start, parts[q].Positions.data());
+    for (const auto& c : candidates[q])
+    {
+      all.emplace_back(c.Reach, c.Radius);
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const double limit = asmcore::SnapBound(start, all);
+  EXPECT_GT(limit, start) << "the widest clusters raise the bound";
+  // Step 3: each part moves its own samples.
+  Index moved = 0;
+  for (int q = 0; q < 2; ++q)
+  {
+    asmcore::MoveSnappedSamples(xyz, parts[q].MemberStart, parts[q].Members.data(), candidates[q],
+      limit, parts[q].Positions.data());
+    for (std::size_t j = 0; j < parts[q].Samples.size(); ++j)
+    {
+      const asmcore::Sample& whole = bounded.Samples[parts[q].Samples[j]];
+      const asmcore::Sample& before = unbounded.Samples[parts[q].Samples[j]];
+      const double* p = parts[q].Positions.data() + 3 * j;
+      EXPECT_TRUE(std::equal(p, p + 3, whole.Position)) << "sample " << parts[q].Samples[j];
+      moved += std::equal(p, p + 3, before.Position) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_LT(moved, target / 5);
+}
+
 TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
 {
   // 20 % of a sphere: five points per sample, where the input point nearest

@@ -14,9 +14,9 @@ that each process's halo of 7 cell rings does not cover the whole bunny;
 FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
 (one process, AlwaysDistribute off), so the serial path runs (FillHoles,
-CoveringRounds, BoundSnappedHoles and FinalLloydIterations off in the feature
-mode, as a distributed run has them); its output must match
-the distributed runs.
+CoveringRounds and FinalLloydIterations off in the feature mode, as a
+distributed run has them; BoundSnappedHoles on, which a distributed run takes
+over all processes); its output must match the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -73,7 +73,6 @@ else:
     if SERIAL:
         asm.FillHolesOff()
         asm.SetCoveringRounds(0)  # global too: distributed runs switch it off
-        asm.BoundSnappedHolesOff()  # likewise
         asm.SetFinalLloydIterations(0)  # likewise
 asm.Update()
 out = asm.GetOutput()
@@ -128,9 +127,13 @@ if rank == 0:
     assert figures["KPE.NumberOfOriginalPoints"] == len(xyz), figures
     assert 0 < figures["KPE.AKPE"] <= figures["KPE.MKPE"], figures
     if MODE == "feature":
-        # InputPointSamples: every output point is an input point, exactly.
+        # InputPointSamples: every output point is an input point, exactly,
+        # except the few that BoundSnappedHoles moved towards their cluster's
+        # centre (the bound of the whole cloud, over all processes).
         inputs = set(map(tuple, xyz))
-        assert all(tuple(p) in inputs for p in table[:, :3]), "an output point is not an input point"
+        moved = sum(tuple(p) not in inputs for p in table[:, :3])
+        print("output points moved off their input point by the snapped-hole bound:", moved)
+        assert 0 < moved < NS // 10, moved
 
     order = np.lexsort(table[:, 2::-1].T)
     np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()),
