@@ -95,6 +95,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -255,6 +256,24 @@ void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
 /// position.
 void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz,
   asmcore::SimplifyResult& result, const asmcore::Execution& execution);
+
+/// Feature mode: the core's SumOverProcesses hook over `comm`
+/// (asmcore::SimplifyParameters), counting its calls; Finish() makes the
+/// calls this process's run did not make (no points of its own, a run cut
+/// short), with zeros, so that every process makes
+/// asmcore::CollectiveSumsOf(parameters) of them before the next collective.
+class CollectiveSums
+{
+public:
+  CollectiveSums(const Communication& comm, const asmcore::SimplifyParameters& parameters);
+  std::function<void(std::vector<long long>&)> Hook();
+  void Finish();
+
+private:
+  const Communication& Comm;
+  int Expected = 0;
+  int Made = 0;
+};
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the
 /// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,

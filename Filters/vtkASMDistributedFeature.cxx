@@ -7,6 +7,7 @@
 
 #include "Core/Budget.h"
 #include "Core/FeatureSimplify.h"
+#include "Core/Lloyd.h"
 #include "Core/SnappedHoles.h"
 
 #include "vtkMultiProcessController.h"
@@ -24,6 +25,30 @@ int HaloRingsFor(const asmcore::SimplifyParameters& parameters)
     return HaloRings;
   }
   return std::max(HaloRings, asmcore::InfluenceRingsOf(parameters) + FeatureHaloMargin);
+}
+
+CollectiveSums::CollectiveSums(const Communication& comm, const asmcore::SimplifyParameters& parameters)
+  : Comm(comm)
+  , Expected(asmcore::CollectiveSumsOf(parameters))
+{
+}
+
+std::function<void(std::vector<long long>&)> CollectiveSums::Hook()
+{
+  return [this](std::vector<long long>& values) {
+    ++this->Made;
+    this->Comm.Sum(values);
+  };
+}
+
+void CollectiveSums::Finish()
+{
+  // (The core's sums are ExactMean::Sums: three values.)
+  for (; this->Made < this->Expected; ++this->Made)
+  {
+    std::vector<long long> zeros(asmcore::ExactMean().Sums.size(), 0);
+    this->Comm.Sum(zeros);
+  }
 }
 
 std::vector<Index> ApportionCells(const std::vector<Index>& capacity,

@@ -202,8 +202,9 @@ int vtkASMSimplify::RequestData(
   parameters.VariationBudget = this->VariationBudget;
   parameters.VariationCap = this->VariationCap;
   parameters.ReserveFreeSample = this->ReserveFreeSample;
-  // Lloyd steps over the whole cloud after the hole filling: not distributed.
-  parameters.FinalLloydIterations = distributed ? 0 : this->FinalLloydIterations;
+  // Local steps (a wider halo in distributed runs: HaloRingsFor); the mean
+  // of their weights is summed over the processes (SumOverProcesses).
+  parameters.FinalLloydIterations = this->FinalLloydIterations;
   parameters.LloydVariationWeight = this->LloydVariationWeight;
   // Covering refinement moves samples across the halo: not distributed.
   parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
@@ -287,10 +288,19 @@ int vtkASMSimplify::RequestData(
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
 
+  asmvtk::CollectiveSums sums(comm, parameters);
+  if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving)
+  {
+    parameters.SumOverProcesses = sums.Hook();
+  }
   asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
     asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
   if (distributed)
   {
+    if (parameters.SumOverProcesses)
+    {
+      sums.Finish(); // (the calls a run cut short did not make)
+    }
     // Figures of the whole cloud: sums and maxima over the processes.
     const Index keys = comm.Sum(result.NumberOfKeyPoints);
     const double sum = comm.Sum(result.AKPE * static_cast<double>(result.NumberOfKeyPoints));

@@ -111,7 +111,20 @@ void JoinUnassignedPoints(Coordinates P, const SampleSet& samples, Index count,
 
 int InfluenceRingsOf(const SimplifyParameters& parameters)
 {
-  return 1 + 2 * CrossIterations(parameters) + 2;
+  // A Lloyd step moves a sample to the centroid of points of its cell's
+  // ring, each assigned among the samples of its own ring: 2 rings. A
+  // weighted step also reads the variations of the clusters around those
+  // samples, measured on an assignment of their own: 4.
+  const int finalStep = parameters.LloydVariationWeight > 0.0 ? 4 : 2;
+  return 1 + 2 * CrossIterations(parameters) +
+    finalStep * std::max(0, parameters.FinalLloydIterations) + 2;
+}
+
+int CollectiveSumsOf(const SimplifyParameters& parameters)
+{
+  return parameters.Mode == SimplifyMode::Paper || parameters.LloydVariationWeight <= 0.0
+    ? 0
+    : std::max(0, parameters.FinalLloydIterations);
 }
 
 SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
@@ -360,6 +373,16 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // assignment the steps above left (a sample moved since by one Lloyd step
   // at most), the next ones assign again first (weights measured on the
   // weighted clusters would keep shrinking the same samples).
+  std::vector<char> output; // (cells whose samples are output; empty: all)
+  if (parameters.OutputCell && parameters.FinalLloydIterations > 0 &&
+    parameters.LloydVariationWeight > 0.0)
+  {
+    output.resize(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
+    }
+  }
   for (int it = 0; it < parameters.FinalLloydIterations; ++it)
   {
     std::vector<double> scale;
@@ -369,10 +392,27 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
       {
         AssignToSamples(P, grid, neighbors, samples, assign, execution);
       }
-      scale = VariationScales(ClusterVariations(P, grid, neighbors, assign, samples, execution),
-        parameters.LloydVariationWeight,
+      const std::vector<double> variation =
+        ClusterVariations(P, grid, neighbors, assign, samples, execution);
+      // The mean over the whole cloud: this run's output cells' samples, and
+      // in a distributed run every other process's (an exact sum, so that
+      // it does not depend on how the cloud is split).
+      ExactMean mean;
+      for (Index s = 0; s < count; ++s)
+      {
+        if (output.empty() || output[info[s].Owner])
+        {
+          mean.Add(variation[s]);
+        }
+      }
+      if (parameters.SumOverProcesses)
+      {
+        parameters.SumOverProcesses(mean.Sums);
+      }
+      scale = VariationScales(variation, parameters.LloydVariationWeight,
         parameters.VariationCap > 0.0 ? parameters.VariationCap
-                                      : std::numeric_limits<double>::infinity());
+                                      : std::numeric_limits<double>::infinity(),
+        mean.Value());
     }
     AssignToSamples(
       P, grid, neighbors, samples, assign, execution, scale.empty() ? nullptr : scale.data());

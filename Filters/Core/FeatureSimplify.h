@@ -43,11 +43,13 @@
  * rule) is global: a distributed driver computes it over all cells and
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
- * samples are output (vtkASMDistributed.h). The hole filling, the covering
- * refinement and the final Lloyd iterations are global and are not
- * supported in distributed runs; the snapped-hole bound is global too, and
- * a distributed driver takes it after this function, over all processes
- * (SnappedHoles.h: BoundSnappedHoles off here).
+ * samples are output (vtkASMDistributed.h). The final Lloyd iterations
+ * are local too (2 rings each, 4 when weighted), except the mean variation
+ * of their weights, which a distributed driver sums over all processes
+ * (SumOverProcesses). The hole filling and the covering refinement are
+ * global and are not supported in distributed runs; the snapped-hole bound
+ * is global too, and a distributed driver takes it after this function,
+ * over all processes (SnappedHoles.h: BoundSnappedHoles off here).
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h
@@ -58,12 +60,22 @@ namespace asmcore
 {
 /// Largest number of Lloyd iterations across cell borders.
 constexpr int MaxCrossCellIterations = 4;
-/// Rings of cells a cell's result may depend on, whatever the parameters:
-/// one for Lemma 2, two per cross-cell iteration, two for the final assignment.
-constexpr int InfluenceRings = 1 + 2 * MaxCrossCellIterations + 2;
+/// Largest number of final Lloyd iterations (vtkASMSimplify's clamp).
+constexpr int MaxFinalLloydIterations = 8;
+/// Rings of cells a cell's result may depend on with vtkASMSimplify's
+/// ranges: one for Lemma 2, two per cross-cell iteration, four per
+/// (weighted) final iteration, two for the final assignment.
+constexpr int InfluenceRings = 1 + 2 * MaxCrossCellIterations + 4 * MaxFinalLloydIterations + 2;
 
-/// The rings a cell's result depends on with these parameters.
+/// The rings a cell's result depends on with these parameters (FillHoles
+/// and CoveringRounds off: they are global).
 VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
+
+/// How many times a run with these parameters calls SumOverProcesses (one
+/// not cut short by an abort, an empty input or a limit; a distributed
+/// driver makes the missing calls with zeros so that every process makes as
+/// many): once per final Lloyd iteration when they are weighted.
+VTKASMFILTERS_EXPORT int CollectiveSumsOf(const SimplifyParameters& parameters);
 
 /// Simplify in the feature-preserving mode (see above); same contract as
 /// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever

@@ -313,19 +313,48 @@ std::vector<double> ClusterVariations(Coordinates xyz, const CellGrid& grid,
   return variation;
 }
 
-std::vector<double> VariationScales(const std::vector<double>& variation, double weight, double cap)
+void ExactMean::Add(double value)
+{
+  constexpr double largest = 4096.0;
+  const double v = value > 0.0 ? std::min(value, largest) : 0.0; // (NaN: 0)
+  // At most 2^52: the high and the low 26 bits, each summed over fewer than
+  // 2^37 terms without overflow.
+  auto q = static_cast<long long>(std::llround(std::ldexp(v, 40)));
+  q = std::min(q, (1LL << 52) - 1);
+  this->Sums[0] += q >> 26;
+  this->Sums[1] += q & ((1LL << 26) - 1);
+  this->Sums[2] += 1;
+}
+
+double ExactMean::Value() const
+{
+  if (this->Sums[2] <= 0)
+  {
+    return 0.0;
+  }
+  const double total = std::ldexp(static_cast<double>(this->Sums[0]), -14) +
+    std::ldexp(static_cast<double>(this->Sums[1]), -40);
+  return total / static_cast<double>(this->Sums[2]);
+}
+
+std::vector<double> VariationScales(
+  const std::vector<double>& variation, double weight, double cap, double mean)
 {
   std::vector<double> scale(variation.size(), 1.0);
-  double mean = 0.0;
-  for (double v : variation)
-  {
-    mean += v;
-  }
-  mean /= static_cast<double>(std::max<std::size_t>(1, variation.size()));
   for (std::size_t s = 0; mean > 0.0 && s < variation.size(); ++s)
   {
     scale[s] = 1.0 + weight * std::min(cap, variation[s] / mean);
   }
   return scale;
+}
+
+std::vector<double> VariationScales(const std::vector<double>& variation, double weight, double cap)
+{
+  ExactMean mean;
+  for (double v : variation)
+  {
+    mean.Add(v);
+  }
+  return VariationScales(variation, weight, cap, mean.Value());
 }
 } // namespace asmcore

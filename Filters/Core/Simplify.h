@@ -79,7 +79,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   bool ReserveFreeSample = true;
   /// Lloyd iterations across cell borders after the hole filling, before
   /// the final clusters (they tighten the clusters the hole filling moved).
-  /// Global, like FillHoles: not for distributed runs.
+  /// Local (InfluenceRingsOf): distributed runs take them with a wider halo.
   int FinalLloydIterations = 2;
   /// k of the final Lloyd iterations' weighted assignment: a point joins
   /// the sample s of least m_s |p - s|^2, m_s = 1 + k min(VariationCap,
@@ -87,7 +87,8 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// (Euclidean) cluster before the iteration (the first iteration reuses
   /// the assignment the steps before left, the next ones assign again); the
   /// samples crowd towards creases and curved bands, which the per-cell
-  /// budget alone spreads over its cell. 0: Euclidean.
+  /// budget alone spreads over its cell. The mean is over the whole cloud
+  /// (SumOverProcesses in distributed runs). 0: Euclidean.
   double LloydVariationWeight = 0.75;
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
@@ -125,6 +126,13 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// samples), and only the samples of the cells for which this returns true
   /// are output (with all their members, halo points included). Unset: all.
   std::function<bool(std::uint64_t cellKey)> OutputCell;
+  /// Feature-preserving mode: replaces each value by its sum over all
+  /// processes (collective). The final Lloyd iterations' variation weights
+  /// (LloydVariationWeight) are relative to the mean over the samples of the
+  /// whole cloud: each process sums its output cells' samples (ExactMean)
+  /// and calls this once per iteration, CollectiveSumsOf(parameters) times
+  /// in a run that is not cut short. Unset: the samples passed are the cloud.
+  std::function<void(std::vector<long long>& values)> SumOverProcesses;
   ///@}
 };
 

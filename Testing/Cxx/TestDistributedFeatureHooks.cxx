@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The hooks of the feature-preserving mode used by distributed runs (Grid,
-// CellBudget with TRUE budgets for halo cells, OutputCell, CloudCentroid):
-// a cloud cut into slabs of grid cells, each slab simplified with a halo of
-// InfluenceRingsOf + 2 rings (vtkASMDistributed.h, HaloRingsFor), gives
-// exactly the serial samples and clusters (FillHoles off, as distributed runs
-// have it). And the serial result of both modes does not depend on the order
-// of the input points.
+// CellBudget with TRUE budgets for halo cells, OutputCell, CloudCentroid,
+// SumOverProcesses): a cloud cut into slabs of grid cells, each slab
+// simplified with a halo of InfluenceRingsOf + 2 rings (vtkASMDistributed.h,
+// HaloRingsFor), gives exactly the serial samples and clusters (FillHoles
+// off, as distributed runs have it; the final Lloyd iterations with the
+// slabs run as concurrent threads, whose variation sums meet as MPI's would).
+// And the serial result of both modes does not depend on the order of the
+// input points.
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
 #include "Core/FeatureSimplify.h"
@@ -18,8 +20,11 @@
 
 #include <algorithm>
 #include <array>
+#include <condition_variable>
 #include <map>
+#include <mutex>
 #include <random>
+#include <thread>
 
 namespace
 {
@@ -40,25 +45,67 @@ asmcore::SimplifyParameters FeatureParameters()
   p.NumberOfSamples = 4000;
   p.SamplesPerCell = 2.0;
   p.FillHoles = false; // global: off in distributed runs
-  p.BoundSnappedHoles = false; // likewise
-  p.FinalLloydIterations = 0;  // likewise
+  p.BoundSnappedHoles = false; // likewise (taken after the run, over all processes)
+  p.FinalLloydIterations = 0;  // (see FinalStepsOverSlabs)
   return p;
 }
 
-void CheckSlabs(int crossCellIterations, int slabs)
+// An all-reduce sum among `parties` threads (MPI's, for slabs run at once).
+class ThreadSums
 {
-  const asmtest::Cloud cloud = asmtest::Sphere(20000, 2.0, 5);
+public:
+  explicit ThreadSums(int parties)
+    : Parties(parties)
+  {
+  }
+  void Sum(std::vector<long long>& values)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    const long long generation = this->Generation;
+    this->Total.resize(values.size(), 0);
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      this->Total[k] += values[k];
+    }
+    if (++this->Arrived == this->Parties)
+    {
+      this->Result.swap(this->Total);
+      this->Total.clear();
+      this->Arrived = 0;
+      ++this->Generation;
+      this->Done.notify_all();
+    }
+    else
+    {
+      this->Done.wait(lock, [&] { return this->Generation != generation; });
+    }
+    values = this->Result;
+    ++this->Calls;
+  }
+  int Calls = 0;
+
+private:
+  std::mutex Mutex;
+  std::condition_variable Done;
+  int Parties;
+  int Arrived = 0;
+  long long Generation = 0;
+  std::vector<long long> Total, Result;
+};
+
+void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(points, 2.0, 5);
   const std::vector<Index> ids = asmtest::AllIds(cloud);
-  asmcore::SimplifyParameters p = FeatureParameters();
-  p.CrossCellIterations = crossCellIterations;
   const asmcore::SimplifyResult serial = asmcore::Simplify(cloud.data(), ids, nullptr, p);
-  ASSERT_EQ(serial.Samples.size(), 4000u);
+  ASSERT_EQ(serial.Samples.size(), static_cast<std::size_t>(p.NumberOfSamples));
 
   // The global grid and budgets, as a distributed run computes them.
   const asmtest::GlobalCells cells(cloud, ids, serial.CellSize);
   const asmcore::GridSpec& spec = cells.Spec;
   const std::vector<Index> budget = asmcore::ApportionWithCoverage(
-    asmcore::CellShares(cells.Capacity, cells.Variation, p, p.BudgetExponent), cells.Capacity, 4000, p.CoverEveryCell);
+    asmcore::CellShares(cells.Capacity, cells.Variation, p, p.BudgetExponent), cells.Capacity,
+    p.NumberOfSamples, p.CoverEveryCell);
   const std::map<std::uint64_t, Index> budgetOf = cells.ByKey(budget);
   const double* centroid = cells.Centroid;
 
@@ -74,25 +121,43 @@ void CheckSlabs(int crossCellIterations, int slabs)
   std::vector<std::array<double, 5>> merged;
   Index members = 0;
   std::size_t smallestPart = ids.size();
+  std::vector<std::vector<Index>> mine(static_cast<std::size_t>(slabs));
   for (int part = 0; part < slabs; ++part)
   {
-    std::vector<Index> mine;
     for (Index id : ids)
     {
       const std::int64_t i = xIndex(spec.KeyOf(&cloud[3 * id]));
       if (slabOf(std::max<std::int64_t>(0, i - halo)) <= part &&
         part <= slabOf(std::min<std::int64_t>(dim - 1, i + halo)))
       {
-        mine.push_back(id);
+        mine[part].push_back(id);
       }
     }
-    smallestPart = std::min(smallestPart, mine.size());
-    asmcore::SimplifyParameters q = p;
-    q.Grid = &spec;
-    q.CloudCentroid = centroid;
-    q.CellBudget = [&](std::uint64_t key) { return budgetOf.at(key); };
-    q.OutputCell = [&](std::uint64_t key) { return slabOf(xIndex(key)) == part; };
-    const asmcore::SimplifyResult result = asmcore::Simplify(cloud.data(), mine, nullptr, q);
+    smallestPart = std::min(smallestPart, mine[part].size());
+  }
+  // The slabs run at once (each one's sums wait for the others').
+  ThreadSums sums(slabs);
+  std::vector<asmcore::SimplifyResult> results(static_cast<std::size_t>(slabs));
+  std::vector<std::thread> threads;
+  for (int part = 0; part < slabs; ++part)
+  {
+    threads.emplace_back([&, part]() {
+      asmcore::SimplifyParameters q = p;
+      q.Grid = &spec;
+      q.CloudCentroid = centroid;
+      q.CellBudget = [&](std::uint64_t key) { return budgetOf.at(key); };
+      q.OutputCell = [&, part](std::uint64_t key) { return slabOf(xIndex(key)) == part; };
+      q.SumOverProcesses = [&](std::vector<long long>& v) { sums.Sum(v); };
+      results[part] = asmcore::Simplify(cloud.data(), mine[part], nullptr, q);
+    });
+  }
+  for (std::thread& t : threads)
+  {
+    t.join();
+  }
+  EXPECT_EQ(sums.Calls, slabs * asmcore::CollectiveSumsOf(p));
+  for (const asmcore::SimplifyResult& result : results)
+  {
     for (const auto& sample : result.Samples)
     {
       members += sample.ClusterSize;
@@ -140,12 +205,33 @@ void CheckOrder(asmcore::SimplifyParameters p)
 
 TEST(DistributedFeatureHooks, SlabsWithHaloGiveTheSerialSamples)
 {
-  CheckSlabs(1, 4);
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.CrossCellIterations = 1;
+  CheckSlabs(p, 4);
 }
 
 TEST(DistributedFeatureHooks, SlabsWithHaloGiveTheSerialSamplesTwoCrossCellSteps)
 {
-  CheckSlabs(2, 3);
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.CrossCellIterations = 2;
+  CheckSlabs(p, 3);
+}
+
+// The final Lloyd iterations, weighted as by default (4 rings each and the
+// mean variation of the whole cloud) and plain (2 rings each), on a finer
+// grid so that the wider halo still leaves parts of the cloud out.
+TEST(DistributedFeatureHooks, FinalStepsOverSlabs)
+{
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.NumberOfSamples = 16000;
+  p.FeatureSamplesPerCell = 1.0;
+  p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
+  ASSERT_GT(p.LloydVariationWeight, 0.0);
+  ASSERT_EQ(asmcore::CollectiveSumsOf(p), 2);
+  CheckSlabs(p, 3, 80000);
+  p.LloydVariationWeight = 0.0;
+  ASSERT_EQ(asmcore::CollectiveSumsOf(p), 0);
+  CheckSlabs(p, 4, 80000);
 }
 
 TEST(DistributedFeatureHooks, FeatureResultDoesNotDependOnPointOrder)

@@ -21,7 +21,7 @@ plugin = os.environ["ASM_PLUGIN"]
 LoadPlugin(plugin, ns=globals())
 data_dir = os.environ["ASM_DATA_DIR"]
 MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"  # as TestMPISimplify.py
-NS = 1800 if MODE == "paper" else 3000
+NS = 1800 if MODE == "paper" else 8000
 
 reader = PLYReader(FileNames=[os.path.join(data_dir, "bunny.ply")])
 value = Calculator(Input=reader, ResultArrayName="Value", Function="coordsX*10+coordsY",
@@ -37,7 +37,7 @@ asm = ASMSimplify(Input=spread, TargetMode="Number Of Output Points",  # noqa: F
 if MODE == "paper":
     asm.Mode = "Paper"
 else:
-    asm.FeatureSamplesPerCell = 4.0  # the default mode, FillHoles switched off by the filter
+    asm.FeatureSamplesPerCell = 1.0  # the default mode, FillHoles switched off by the filter
 kpe = KeyPointError(Original=spread, Simplified=asm)  # noqa: F405
 kpe.UpdatePipeline()
 

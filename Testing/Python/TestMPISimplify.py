@@ -9,14 +9,15 @@ sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
 
 Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
-FEATURE_PRESERVING mode, N_s = 3000 with FeatureSamplesPerCell 4, a grid fine enough so
-that each process's halo of 7 cell rings does not cover the whole bunny;
-FillHoles stays at its default: distributed runs switch it off with a
+FEATURE_PRESERVING mode, N_s = 8000 with FeatureSamplesPerCell 1, a grid fine
+enough so that each process's halo of 15 cell rings does not cover the whole
+bunny; FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
-(one process, AlwaysDistribute off), so the serial path runs (FillHoles,
-CoveringRounds and FinalLloydIterations off in the feature mode, as a
-distributed run has them; BoundSnappedHoles on, which a distributed run takes
-over all processes); its output must match the distributed runs.
+(one process, AlwaysDistribute off), so the serial path runs (FillHoles off
+in the feature mode, as a distributed run has it, and CoveringRounds, off by
+default; the final Lloyd iterations, whose weights a distributed run
+normalises over all processes, and BoundSnappedHoles, which it takes over
+all processes, on); its output must match the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -33,7 +34,7 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
 MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"
-NS = 1800 if MODE == "paper" else 3000
+NS = 1800 if MODE == "paper" else 8000
 SERIAL = len(sys.argv) > 3 and sys.argv[3] == "serial"
 controller = vtkMultiProcessController.GetGlobalController()
 rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
@@ -69,11 +70,11 @@ if MODE == "paper":
     asm.SetMode(vtkASMSimplify.PAPER)
 else:
     assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
-    asm.SetFeatureSamplesPerCell(4.0)
+    asm.SetFeatureSamplesPerCell(1.0)
+    assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
+    assert asm.GetCoveringRounds() == 0  # global too: distributed runs switch it off
     if SERIAL:
         asm.FillHolesOff()
-        asm.SetCoveringRounds(0)  # global too: distributed runs switch it off
-        asm.SetFinalLloydIterations(0)  # likewise
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which
