@@ -36,9 +36,9 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path runs FillHoles, CoveringRounds
- *    and FinalLloydIterations (feature mode), which distributed runs do not
- *    (7), so it matches them only with those off. The automatic cell size is searched first on points
+ *    AlwaysDistribute is on; the serial path runs FillHoles and
+ *    CoveringRounds (feature mode), which distributed runs do not (7), so it
+ *    matches them only with those off. The automatic cell size is searched first on points
  *    picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
@@ -60,9 +60,15 @@
  *    samples and clusters depend on the points within
  *    asmcore::InfluenceRingsOf(parameters) rings of cells (key point
  *    validation across borders: 1; each CrossCellIterations Lloyd step: 2;
- *    the final assignment: 2), given the grid and the budgets. The halo is
- *    that plus FeatureHaloMargin = 2 rings (7 by default), for the repair of
- *    empty clusters (FillEmptyClusters reads cluster sizes two rings away).
+ *    each FinalLloydIterations step: 4 when weighted by the variations of
+ *    the clusters around, 2 otherwise; the final assignment: 2), given the
+ *    grid and the budgets. The halo is that plus FeatureHaloMargin = 2 rings
+ *    (15 by default), for the repair of empty clusters (FillEmptyClusters
+ *    reads cluster sizes two rings away). The weighted steps' mean variation
+ *    is of the whole cloud: each process sums its owned samples' in fixed
+ *    point (asmcore::ExactMean), and the sums are added over the processes
+ *    (SumOverProcesses, CollectiveSums), so that the mean does not depend on
+ *    the partition.
  *    Every process learns every cell's budget (ShareAllBudgets), and the
  *    core simplifies the halo cells too with their TRUE budgets (hooks
  *    CellBudget = TrueBudgetOf, OutputCell = Owns): their samples are exact
@@ -70,8 +76,8 @@
  *    are output, with all their members (halo points included; points of
  *    owned cells that join a halo cell's sample are output by that cell's
  *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
- *    global step) and is switched off with a warning, CoveringRounds and
- *    FinalLloydIterations (they would need a wider halo) silently.
+ *    global step) and is switched off with a warning, CoveringRounds (off
+ *    by default) silently.
  *    BoundSnappedHoles, whose bound is the largest hole of the whole cloud,
  *    runs after the core, over all processes (BoundSnappedHolesAcross).
  *    Points that no sample

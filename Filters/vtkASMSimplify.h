@@ -92,12 +92,12 @@
  * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
- * MPI launcher) started it, or with AlwaysDistribute; FillHoles,
- * CoveringRounds and FinalLloydIterations (FEATURE_PRESERVING) are global
- * and switched off in distributed runs (FillHoles with a warning), and
- * BoundSnappedHoles runs over all processes. The serial path gives the same
- * points too when those three are off. Design and
- * limits: vtkASMDistributed.h.
+ * MPI launcher) started it, or with AlwaysDistribute; FillHoles and
+ * CoveringRounds (FEATURE_PRESERVING) are global and switched off in
+ * distributed runs (FillHoles with a warning), FinalLloydIterations widen
+ * the halo, and BoundSnappedHoles runs over all processes. The serial path
+ * gives the same points too when FillHoles and CoveringRounds are off.
+ * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
  *
@@ -338,8 +338,9 @@ public:
   /**
    * FEATURE_PRESERVING: Lloyd iterations across cell borders after the hole
    * filling, before the final clusters (iterations, in [0, 8]); they tighten
-   * the clusters that the hole filling moved; default 2. Global like
-   * FillHoles: distributed runs switch them off.
+   * the clusters that the hole filling moved; default 2. Local: a
+   * distributed run takes them with a halo of 4 more cell rings per
+   * iteration (2 when LloydVariationWeight is 0).
    */
   vtkSetClampMacro(FinalLloydIterations, int, 0, 8);
   vtkGetMacro(FinalLloydIterations, int);
@@ -356,8 +357,8 @@ public:
    * towards creases and curved bands (lower point-to-plane error there)
    * instead of spreading evenly over their cell's ring; one more
    * nearest-sample pass, about 7 % of the mode's time. 0: plain Lloyd
-   * iterations. Default 0.75. Global like FinalLloydIterations (not used by
-   * distributed runs).
+   * iterations. Default 0.75. The mean is over the whole cloud, in
+   * distributed runs too (summed over the processes).
    */
   vtkSetClampMacro(LloydVariationWeight, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(LloydVariationWeight, double);

@@ -5,7 +5,7 @@ parallel (each process makes its share, seeded by process id), simplified to
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \\
     mpiexec --oversubscribe -n 2 pvbatch --mpi Examples/Python/mpi_scaling.py \\
       --points 50000000 [--fraction 0.01] [--always-distribute] [--mode paper] [--no-fill-holes] \\
-      [--no-covering]
+      [--no-covering] [--final-lloyd-iterations N]
 
 PYTHONPATH must hold the build tree's asmvtk package (build/lib/python3/dist-packages).
 Prints, on process 0: processes, points, output points, wall time of the
@@ -33,8 +33,9 @@ parser.add_argument("--fraction", type=float, default=0.01)
 parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
 parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
-# FillHoles and FinalLloydIterations off: distributed runs switch them off anyway
+# FillHoles off, as distributed runs have it
 parser.add_argument("--no-fill-holes", action="store_true")
+parser.add_argument("--final-lloyd-iterations", type=int)  # (default: the filter's)
 parser.add_argument("--no-covering", action="store_true")  # CoveringRounds 0, as distributed runs do
 args = parser.parse_args()
 
@@ -66,8 +67,8 @@ asm.SetAlwaysDistribute(args.always_distribute)
 asm.SetGenerateCurvature(not args.no_curvature)
 asm.SetMode(vtkASMSimplify.PAPER if args.mode == "paper" else vtkASMSimplify.FEATURE_PRESERVING)
 asm.SetFillHoles(not args.no_fill_holes)
-if args.no_fill_holes:
-    asm.SetFinalLloydIterations(0)
+if args.final_lloyd_iterations is not None:
+    asm.SetFinalLloydIterations(args.final_lloyd_iterations)
 if args.no_covering:
     asm.SetCoveringRounds(0)
 controller.Barrier()
