@@ -1,0 +1,54 @@
+"""MPI test, run under `mpiexec -n 3 pvbatch --mpi --symmetric`: a cloud of
+12 points (the bunny's first ones), all on process 0, simplified to N_s = 4
+in both modes. The grid has too few cell layers for three slabs, so some
+processes own no cell and receive no point: they must still take part in
+every collective of the run (the feature mode's final Lloyd iterations sum
+a mean over the processes; a process without points makes those calls with
+zeros), so the run ends (no hang: the test's timeout) with exactly N_s
+points over the processes, none of them on a process without points.
+
+Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
+"""
+import os
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+
+from asmvtk import vtkASMSimplify
+
+NS = 4
+controller = vtkMultiProcessController.GetGlobalController()
+rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+assert size == 3, size
+data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
+reader = vtkPLYReader()
+reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
+reader.Update()
+xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[:12]
+mine = xyz if rank == 0 else xyz[:0]
+points = vtkPoints()
+points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
+piece = vtkPolyData()
+piece.SetPoints(points)
+
+for mode in (vtkASMSimplify.FEATURE_PRESERVING, vtkASMSimplify.PAPER):
+    asm = vtkASMSimplify()
+    asm.SetInputData(piece)
+    asm.SetMode(mode)
+    asm.SetTargetModeToNumberOfOutputPoints()
+    asm.SetNumberOfOutputPoints(NS)
+    if mode == vtkASMSimplify.FEATURE_PRESERVING:
+        assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
+    asm.Update()
+    counts = vtkDoubleArray()
+    local = asm.GetOutput().GetNumberOfPoints()
+    controller.AllGatherV(numpy_to_vtk(np.array([local], dtype=np.float64), deep=1), counts)
+    counts = vtk_to_numpy(counts)
+    assert counts.sum() == NS, (mode, counts)
+    assert (counts == 0).any(), ("some process must be left without points", mode, counts)
+    if rank == 0:
+        print("mode %d: output points per process %s" % (mode, counts.astype(int).tolist()))
