@@ -40,17 +40,11 @@ std::uint64_t Mix(std::uint64_t key)
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
   asmcore::IdView ids, const asmcore::GridSpec& spec)
 {
-  std::vector<std::uint64_t> keys(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    keys[i] = spec.KeyOf(xyz + 3 * ids[i]);
-  }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   if (comm.Size() == 1)
   {
-    return static_cast<Index>(keys.size());
+    return asmcore::CountOccupiedCells(xyz, ids, spec);
   }
+  const std::vector<std::uint64_t> keys = asmcore::OccupiedCellKeys(xyz, ids, spec);
   // Each key is counted by one process, chosen by a hash of the key.
   std::vector<std::vector<long long>> send(static_cast<std::size_t>(comm.Size()));
   for (std::uint64_t key : keys)

@@ -3,6 +3,8 @@
 // their cells (Redistribute, vtkASMDistributed.h).
 #include "vtkASMDistributed.h"
 
+#include "Core/Grid.h"
+
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -153,96 +155,119 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   {
     arrays.push_back(inPD->GetArray(s.Name.c_str()));
   }
-  std::vector<std::vector<double>> send(static_cast<std::size_t>(comm.Size()));
-  std::vector<double> record(static_cast<std::size_t>(width));
-  std::vector<int> destinations;
+  // A point goes to the owners of the axis indices within haloRings of its
+  // own. Slabs are contiguous and numbered along the axis (BinOwner does not
+  // decrease), so those are the processes from the owner of the lowest index
+  // to the owner of the highest, less those without a slab.
+  const int processes = comm.Size();
+  std::vector<char> hasSlab(static_cast<std::size_t>(processes), 0);
+  for (int r : partition.BinOwner)
+  {
+    hasSlab[r] = 1;
+  }
+  auto forEachDestination = [&](const double* p, auto&& visit) {
+    const std::int64_t axis = partition.AxisIndex(p);
+    const int first = partition.OwnerOf(axis - haloRings);
+    const int last = partition.OwnerOf(axis + haloRings);
+    for (int r = first; r <= last; ++r)
+    {
+      if (r == first || r == last || hasSlab[r])
+      {
+        visit(r);
+      }
+    }
+  };
+  // Each process's records are counted first, so that the buffers are
+  // allocated once (zeroed: the padding bytes of the arrays' slots too).
+  std::vector<std::size_t> records(static_cast<std::size_t>(processes), 0);
+  for (Index id : ids)
+  {
+    forEachDestination(xyz + 3 * id, [&](int r) { ++records[r]; });
+  }
+  std::vector<std::vector<double>> send(static_cast<std::size_t>(processes));
+  for (int r = 0; r < processes; ++r)
+  {
+    send[r].resize(records[r] * static_cast<std::size_t>(width));
+    records[r] = 0; // (from here on: the records written)
+  }
   std::vector<double> tuple;
   for (Index id : ids)
   {
     const double* p = xyz + 3 * id;
-    std::fill(record.begin(), record.end(), 0.0);
-    std::copy(p, p + 3, record.begin());
-    for (std::size_t k = 0; k < slots.size(); ++k)
-    {
-      const ArraySlot& s = slots[k];
-      auto* bytes = reinterpret_cast<unsigned char*>(record.data() + s.Offset);
-      const int size = vtkDataArray::GetDataTypeSize(s.Type);
-      if (arrays[k]->HasStandardMemoryLayout())
+    double* record = nullptr; // (written once, at the first destination, then copied)
+    forEachDestination(p, [&](int r) {
+      double* to = send[r].data() + records[r]++ * static_cast<std::size_t>(width);
+      if (record)
       {
-        // The values' bytes, exactly.
-        std::memcpy(bytes, arrays[k]->GetVoidPointer(id * s.Components),
-          static_cast<std::size_t>(size) * static_cast<std::size_t>(s.Components));
-        continue;
+        std::copy(record, record + width, to);
+        return;
       }
-      tuple.resize(static_cast<std::size_t>(s.Components));
-      arrays[k]->GetTuple(id, tuple.data());
-      for (int c = 0; c < s.Components; ++c)
+      record = to;
+      for (int a = 0; a < 3; ++a)
       {
-        switch (s.Type)
+        record[a] = p[a];
+      }
+      for (std::size_t k = 0; k < slots.size(); ++k)
+      {
+        const ArraySlot& s = slots[k];
+        auto* bytes = reinterpret_cast<unsigned char*>(record + s.Offset);
+        const int size = vtkDataArray::GetDataTypeSize(s.Type);
+        if (arrays[k]->HasStandardMemoryLayout())
         {
-          vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
-                           std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
+          // The values' bytes, exactly.
+          std::memcpy(bytes, arrays[k]->GetVoidPointer(id * s.Components),
+            static_cast<std::size_t>(size) * static_cast<std::size_t>(s.Components));
+          continue;
+        }
+        tuple.resize(static_cast<std::size_t>(s.Components));
+        arrays[k]->GetTuple(id, tuple.data());
+        for (int c = 0; c < s.Components; ++c)
+        {
+          switch (s.Type)
+          {
+            vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
+                             std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
+          }
         }
       }
-    }
-    record[payloadEnd] = comm.Rank();
-    record[payloadEnd + 1] = static_cast<double>(id);
-    const std::int64_t axis = partition.AxisIndex(p);
-    destinations.clear();
-    for (int d = -haloRings; d <= haloRings; ++d)
-    {
-      destinations.push_back(partition.OwnerOf(axis + d));
-    }
-    std::sort(destinations.begin(), destinations.end());
-    destinations.erase(std::unique(destinations.begin(), destinations.end()), destinations.end());
-    for (int r : destinations)
-    {
-      send[r].insert(send[r].end(), record.begin(), record.end());
-    }
+      record[payloadEnd] = comm.Rank();
+      record[payloadEnd + 1] = static_cast<double>(id);
+    });
   }
   const std::vector<double> received = comm.Exchange(send);
 
-  // Canonical order: cell key, coordinates, then the record's bytes. Sorted
-  // as compact items (no indirection unless two points coincide).
-  struct Item
-  {
-    std::uint64_t Key;
-    double P[3];
-    std::size_t Record;
-  };
+  // Canonical order: cell key, coordinates, then the record's bytes. The
+  // points are grouped by cell as the core groups them (a counting sort,
+  // cells in key order), then each cell's points are sorted.
   const std::size_t n = received.size() / static_cast<std::size_t>(width);
-  std::vector<Item> items(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* r = received.data() + i * width;
-    items[i] = { partition.Grid.KeyOf(r), { r[0], r[1], r[2] }, i };
-  }
-  std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
-    if (a.Key != b.Key)
-    {
-      return a.Key < b.Key;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      if (a.P[c] != b.P[c])
-      {
-        return a.P[c] < b.P[c];
-      }
-    }
-    return std::memcmp(received.data() + a.Record * width + 3,
-             received.data() + b.Record * width + 3, sizeof(double) * (payloadEnd - 3)) < 0;
-  });
-  std::vector<std::uint64_t> keys(n);
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    keys[items[i].Record] = items[i].Key;
-    order[i] = items[i].Record;
-  }
-  items.clear();
-  items.shrink_to_fit();
-
   cloud.Xyz.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (int a = 0; a < 3; ++a) // (not std::copy: a call to memmove per point)
+    {
+      cloud.Xyz[3 * i + a] = received[i * width + a];
+    }
+  }
+  asmcore::CellGrid grid = asmcore::BuildCellGrid(
+    cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid);
+  const Index cells = grid.NumberOfCells();
+  const double* receivedXyz = cloud.Xyz.data();
+  for (Index c = 0; c < cells; ++c)
+  {
+    std::sort(grid.Order.begin() + grid.CellStart[c], grid.Order.begin() + grid.CellStart[c + 1],
+      [&](Index a, Index b) {
+        for (int k = 0; k < 3; ++k)
+        {
+          if (receivedXyz[3 * a + k] != receivedXyz[3 * b + k])
+          {
+            return receivedXyz[3 * a + k] < receivedXyz[3 * b + k];
+          }
+        }
+        return std::memcmp(received.data() + a * width + 3, received.data() + b * width + 3,
+                 sizeof(double) * (payloadEnd - 3)) < 0;
+      });
+  }
+
   cloud.Ids.resize(n);
   cloud.Keys.resize(n);
   cloud.Owned.resize(n);
@@ -266,15 +291,25 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     }
     outArrays.push_back(array);
   }
+  for (Index c = 0; c < cells; ++c)
+  {
+    std::int64_t ijk[3];
+    partition.Grid.Unpack(grid.CellKey[c], ijk);
+    const char owned = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
+    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+    {
+      cloud.Keys[i] = grid.CellKey[c];
+      cloud.Owned[i] = owned;
+    }
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
-    const double* r = received.data() + order[i] * width;
-    std::copy(r, r + 3, cloud.Xyz.begin() + 3 * i);
+    const double* r = received.data() + grid.Order[i] * width;
+    for (int a = 0; a < 3; ++a)
+    {
+      cloud.Xyz[3 * i + a] = r[a];
+    }
     cloud.Ids[i] = static_cast<Index>(i);
-    cloud.Keys[i] = keys[order[i]];
-    std::int64_t ijk[3];
-    partition.Grid.Unpack(cloud.Keys[i], ijk);
-    cloud.Owned[i] = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
     cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
     cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
     for (std::size_t k = 0; k < slots.size(); ++k)

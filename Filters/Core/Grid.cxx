@@ -393,4 +393,32 @@ Index CountOccupiedCells(
   }
   return CountDistinctCells(xyz, ids, spec, execution);
 }
+
+std::vector<std::uint64_t> OccupiedCellKeys(
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution)
+{
+  if (ids.empty())
+  {
+    return {};
+  }
+  OccupancyBitmap bitmap;
+  if (!bitmap.Init(spec, static_cast<Index>(ids.size()), execution))
+  {
+    KeyTable table;
+    InsertKeys(xyz, ids, spec, table);
+    return table.SortedKeys();
+  }
+  MarkCells(xyz, ids, spec, bitmap, nullptr, execution);
+  // (The bits are numbered in key order.)
+  std::vector<std::uint64_t> keys;
+  keys.reserve(static_cast<std::size_t>(bitmap.Count(execution)));
+  for (Index w = 0; w < bitmap.Words; ++w)
+  {
+    for (std::uint64_t bits = bitmap.Word(w); bits != 0; bits &= bits - 1)
+    {
+      keys.push_back(bitmap.KeyOfLinear(64 * static_cast<std::uint64_t>(w) + TrailingZeros(bits)));
+    }
+  }
+  return keys;
+}
 } // namespace asmcore

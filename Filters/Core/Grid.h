@@ -134,6 +134,10 @@ VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(Coordinates xyz, IdView ids,
 VTKASMFILTERS_EXPORT Index CountOccupiedCells(Coordinates xyz, IdView ids,
   const GridSpec& spec, const Execution& execution = {});
 
+/// The keys of the non-empty cells of `spec`, ascending, each once.
+VTKASMFILTERS_EXPORT std::vector<std::uint64_t> OccupiedCellKeys(Coordinates xyz, IdView ids,
+  const GridSpec& spec, const Execution& execution = {});
+
 } // namespace asmcore
 
 #endif
