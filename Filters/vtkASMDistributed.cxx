@@ -19,6 +19,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -60,9 +61,11 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
 //------------------------------------------------------------------------------
 std::int64_t SlabPartition::AxisIndex(const double p[3]) const
 {
-  std::int64_t ijk[3];
-  this->Grid.Unpack(this->Grid.KeyOf(p), ijk);
-  return ijk[this->Axis];
+  // (GridSpec::CellOf along the one axis.)
+  const int a = this->Axis;
+  double t = std::floor((p[a] - this->Grid.Origin[a]) / this->Grid.CellSize);
+  t = std::min(std::max(t, 0.0), static_cast<double>(this->Grid.Dims[a] - 1));
+  return static_cast<std::int64_t>(t);
 }
 
 int SlabPartition::OwnerOf(std::int64_t axisIndex) const
@@ -109,13 +112,13 @@ SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSp
 }
 
 //------------------------------------------------------------------------------
-asmcore::PointIds WithoutDuplicateGhosts(vtkPointSet* input, asmcore::IdView ids)
+void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list)
 {
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
     input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
   if (!ghosts)
   {
-    return asmcore::PointIds(ids.begin(), ids.end());
+    return;
   }
   asmcore::PointIds kept;
   kept.reserve(ids.size());
@@ -126,7 +129,8 @@ asmcore::PointIds WithoutDuplicateGhosts(vtkPointSet* input, asmcore::IdView ids
       kept.push_back(id);
     }
   }
-  return kept;
+  list.swap(kept);
+  ids = list;
 }
 
 //------------------------------------------------------------------------------

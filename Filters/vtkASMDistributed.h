@@ -288,9 +288,10 @@ private:
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
   asmcore::IdView ids, const asmcore::SimplifyParameters& parameters);
 
-/// `ids` without the points flagged as duplicates of another process's
-/// points (vtkGhostType & DUPLICATEPOINT).
-asmcore::PointIds WithoutDuplicateGhosts(vtkPointSet* input, asmcore::IdView ids);
+/// Drops from `ids` the points flagged as duplicates of another process's
+/// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which
+/// holds the others. Without a ghost array nothing changes (no copy).
+void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list);
 } // namespace asmvtk
 
 #endif

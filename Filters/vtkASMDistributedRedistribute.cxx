@@ -251,21 +251,36 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   asmcore::CellGrid grid = asmcore::BuildCellGrid(
     cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid);
   const Index cells = grid.NumberOfCells();
-  const double* receivedXyz = cloud.Xyz.data();
+  // (Each cell's points gathered with their coordinates, sorted there.)
+  struct Item
+  {
+    double P[3];
+    Index Record;
+  };
+  std::vector<Item> items;
   for (Index c = 0; c < cells; ++c)
   {
-    std::sort(grid.Order.begin() + grid.CellStart[c], grid.Order.begin() + grid.CellStart[c + 1],
-      [&](Index a, Index b) {
-        for (int k = 0; k < 3; ++k)
+    items.clear();
+    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+    {
+      const double* p = cloud.Xyz.data() + 3 * grid.Order[i];
+      items.push_back({ { p[0], p[1], p[2] }, grid.Order[i] });
+    }
+    std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (a.P[k] != b.P[k])
         {
-          if (receivedXyz[3 * a + k] != receivedXyz[3 * b + k])
-          {
-            return receivedXyz[3 * a + k] < receivedXyz[3 * b + k];
-          }
+          return a.P[k] < b.P[k];
         }
-        return std::memcmp(received.data() + a * width + 3, received.data() + b * width + 3,
-                 sizeof(double) * (payloadEnd - 3)) < 0;
-      });
+      }
+      return std::memcmp(received.data() + a.Record * width + 3,
+               received.data() + b.Record * width + 3, sizeof(double) * (payloadEnd - 3)) < 0;
+    });
+    for (std::size_t k = 0; k < items.size(); ++k)
+    {
+      grid.Order[grid.CellStart[c] + static_cast<Index>(k)] = items[k].Record;
+    }
   }
 
   cloud.Ids.resize(n);

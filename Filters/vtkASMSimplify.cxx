@@ -135,8 +135,7 @@ int vtkASMSimplify::RequestData(
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
   if (distributed)
   {
-    idList = asmvtk::WithoutDuplicateGhosts(input, ids);
-    ids = idList;
+    asmvtk::DropDuplicateGhosts(input, ids, idList);
     valid = comm.Sum(static_cast<Index>(ids.size()));
     skipped = comm.Sum(static_cast<Index>(skipped));
     pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
@@ -224,8 +223,8 @@ int vtkASMSimplify::RequestData(
       vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
     }
     xyz = share.Cloud.Xyz.data();
-    idList.assign(share.Cloud.Ids.begin(), share.Cloud.Ids.end());
-    ids = idList;
+    idList = asmcore::PointIds(); // (the share's points are 0 .. n-1)
+    ids = asmcore::IdView::Identity(share.Cloud.Ids.size());
     coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
