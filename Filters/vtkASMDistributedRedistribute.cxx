@@ -237,8 +237,10 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   const std::vector<double> received = comm.Exchange(send);
 
   // Canonical order: cell key, coordinates, then the record's bytes. The
-  // points are grouped by cell as the core groups them (a counting sort,
-  // cells in key order), then each cell's points are sorted.
+  // points are grouped by cell as the core groups them (a counting sort of
+  // their coordinates, cells in key order); then, cell by cell, the records
+  // are gathered (scattered over the received ones: loaded ahead), sorted,
+  // and copied out while they are in the cache.
   const std::size_t n = received.size() / static_cast<std::size_t>(width);
   cloud.Xyz.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i)
@@ -248,41 +250,9 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
       cloud.Xyz[3 * i + a] = received[i * width + a];
     }
   }
-  asmcore::CellGrid grid = asmcore::BuildCellGrid(
+  const asmcore::CellGrid grid = asmcore::BuildCellGrid(
     cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid);
-  const Index cells = grid.NumberOfCells();
-  // (Each cell's points gathered with their coordinates, sorted there.)
-  struct Item
-  {
-    double P[3];
-    Index Record;
-  };
-  std::vector<Item> items;
-  for (Index c = 0; c < cells; ++c)
-  {
-    items.clear();
-    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
-    {
-      const double* p = cloud.Xyz.data() + 3 * grid.Order[i];
-      items.push_back({ { p[0], p[1], p[2] }, grid.Order[i] });
-    }
-    std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
-      for (int k = 0; k < 3; ++k)
-      {
-        if (a.P[k] != b.P[k])
-        {
-          return a.P[k] < b.P[k];
-        }
-      }
-      return std::memcmp(received.data() + a.Record * width + 3,
-               received.data() + b.Record * width + 3, sizeof(double) * (payloadEnd - 3)) < 0;
-    });
-    for (std::size_t k = 0; k < items.size(); ++k)
-    {
-      grid.Order[grid.CellStart[c] + static_cast<Index>(k)] = items[k].Record;
-    }
-  }
-
+  // (From here on cloud.Xyz is rewritten in canonical order.)
   cloud.Ids.resize(n);
   cloud.Keys.resize(n);
   cloud.Owned.resize(n);
@@ -306,34 +276,62 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     }
     outArrays.push_back(array);
   }
-  for (Index c = 0; c < cells; ++c)
+  struct Item
   {
+    double P[3];
+    const double* Record;
+  };
+  auto before = [payloadEnd](const Item& a, const Item& b) {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (a.P[k] != b.P[k])
+      {
+        return a.P[k] < b.P[k];
+      }
+    }
+    return std::memcmp(a.Record + 3, b.Record + 3, sizeof(double) * (payloadEnd - 3)) < 0;
+  };
+  constexpr Index Ahead = 16;
+  const auto last = static_cast<Index>(n);
+  std::vector<Item> items;
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
+  {
+    const Index first = grid.CellStart[c];
+    items.clear();
+    for (Index i = first; i < grid.CellStart[c + 1]; ++i)
+    {
+      if (i + Ahead < last)
+      {
+        asmcore::Prefetch(received.data() + grid.Order[i + Ahead] * width);
+      }
+      const double* r = received.data() + grid.Order[i] * width;
+      items.push_back({ { r[0], r[1], r[2] }, r });
+    }
+    std::sort(items.begin(), items.end(), before);
     std::int64_t ijk[3];
     partition.Grid.Unpack(grid.CellKey[c], ijk);
     const char owned = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
-    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
+    for (std::size_t k = 0; k < items.size(); ++k)
     {
+      const std::size_t i = static_cast<std::size_t>(first) + k;
+      const double* r = items[k].Record;
+      for (int a = 0; a < 3; ++a)
+      {
+        cloud.Xyz[3 * i + a] = r[a];
+      }
+      cloud.Ids[i] = static_cast<Index>(i);
       cloud.Keys[i] = grid.CellKey[c];
       cloud.Owned[i] = owned;
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* r = received.data() + grid.Order[i] * width;
-    for (int a = 0; a < 3; ++a)
-    {
-      cloud.Xyz[3 * i + a] = r[a];
-    }
-    cloud.Ids[i] = static_cast<Index>(i);
-    cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
-    cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
-    for (std::size_t k = 0; k < slots.size(); ++k)
-    {
-      const ArraySlot& s = slots[k];
-      const std::size_t bytes = static_cast<std::size_t>(s.Components) *
-        static_cast<std::size_t>(vtkDataArray::GetDataTypeSize(s.Type));
-      std::memcpy(outArrays[k]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
-        r + s.Offset, bytes);
+      cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
+      cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
+      for (std::size_t a = 0; a < slots.size(); ++a)
+      {
+        const ArraySlot& s = slots[a];
+        const std::size_t bytes = static_cast<std::size_t>(s.Components) *
+          static_cast<std::size_t>(vtkDataArray::GetDataTypeSize(s.Type));
+        std::memcpy(outArrays[a]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
+          r + s.Offset, bytes);
+      }
     }
   }
   return cloud;
