@@ -61,9 +61,10 @@
  *    asmcore::InfluenceRingsOf(parameters) rings of cells (key point
  *    validation across borders: 1; each CrossCellIterations Lloyd step: 2;
  *    each FinalLloydIterations step: 4 when weighted by the variations of
- *    the clusters around, 2 otherwise; the final assignment: 2), given the
+ *    the clusters around (the first one 2 after a cross-cell step, whose
+ *    assignment it reuses), 2 otherwise; the final assignment: 2), given the
  *    grid and the budgets. The halo is that plus FeatureHaloMargin = 2 rings
- *    (15 by default), for the repair of empty clusters (FillEmptyClusters
+ *    (13 by default), for the repair of empty clusters (FillEmptyClusters
  *    reads cluster sizes two rings away). The weighted steps' mean variation
  *    is of the whole cloud: each process sums its owned samples' in fixed
  *    point (asmcore::ExactMean), and the sums are added over the processes

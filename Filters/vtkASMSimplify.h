@@ -339,8 +339,9 @@ public:
    * FEATURE_PRESERVING: Lloyd iterations across cell borders after the hole
    * filling, before the final clusters (iterations, in [0, 8]); they tighten
    * the clusters that the hole filling moved; default 2. Local: a
-   * distributed run takes them with a halo of 4 more cell rings per
-   * iteration (2 when LloydVariationWeight is 0).
+   * distributed run takes them with a wider halo (4 more cell rings per
+   * weighted iteration, 2 for the first after a cross-cell step, 2 per
+   * iteration when LloydVariationWeight is 0: 6 by default).
    */
   vtkSetClampMacro(FinalLloydIterations, int, 0, 8);
   vtkGetMacro(FinalLloydIterations, int);

@@ -114,10 +114,17 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
   // A Lloyd step moves a sample to the centroid of points of its cell's
   // ring, each assigned among the samples of its own ring: 2 rings. A
   // weighted step also reads the variations of the clusters around those
-  // samples, measured on an assignment of their own: 4.
-  const int finalStep = parameters.LloydVariationWeight > 0.0 ? 4 : 2;
-  return 1 + 2 * CrossIterations(parameters) +
-    finalStep * std::max(0, parameters.FinalLloydIterations) + 2;
+  // samples, measured on an assignment of their own: 4; but the first one
+  // measures them on the assignment of the cross-cell step before it
+  // (computed on that step's samples, whose influence is 2 rings narrower):
+  // 2 when there is such a step (FillHoles and CoveringRounds off).
+  const int finalIterations = std::max(0, parameters.FinalLloydIterations);
+  int finalRings = 2 * finalIterations;
+  if (parameters.LloydVariationWeight > 0.0 && finalIterations > 0)
+  {
+    finalRings = (CrossIterations(parameters) > 0 ? 2 : 4) + 4 * (finalIterations - 1);
+  }
+  return 1 + 2 * CrossIterations(parameters) + finalRings + 2;
 }
 
 int CollectiveSumsOf(const SimplifyParameters& parameters)

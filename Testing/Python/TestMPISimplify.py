@@ -10,7 +10,7 @@ CheckMPIOutputs.py compares the files of K = 1, 2, 3.
 
 Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
 FEATURE_PRESERVING mode, N_s = 8000 with FeatureSamplesPerCell 1, a grid fine
-enough so that each process's halo of 15 cell rings does not cover the whole
+enough so that each process's halo of 13 cell rings does not cover the whole
 bunny; FillHoles stays at its default: distributed runs switch it off with a
 warning). Optional third argument "serial": pvbatch started without mpiexec
 (one process, AlwaysDistribute off), so the serial path runs (FillHoles off
