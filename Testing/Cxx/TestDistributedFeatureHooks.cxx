@@ -228,6 +228,9 @@ TEST(DistributedFeatureHooks, FinalStepsOverSlabs)
   p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
   ASSERT_GT(p.LloydVariationWeight, 0.0);
   ASSERT_EQ(asmcore::CollectiveSumsOf(p), 2);
+  // Lemma 2: 1; the cross-cell step: 2; the first weighted step after it:
+  // 2, the second: 4; the final clusters: 2 (the halo is 2 more).
+  EXPECT_EQ(asmcore::InfluenceRingsOf(p), 11);
   CheckSlabs(p, 3, 80000);
   p.LloydVariationWeight = 0.0;
   ASSERT_EQ(asmcore::CollectiveSumsOf(p), 0);

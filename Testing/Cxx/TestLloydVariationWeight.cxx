@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -219,4 +220,46 @@ TEST(LloydVariationWeight, SamplesMoveTowardsTheCrease)
   const int plain = nearCrease(0.0), weighted = nearCrease(0.75), strong = nearCrease(3.0);
   EXPECT_GT(weighted, plain);
   EXPECT_GT(strong, weighted);
+}
+
+TEST(LloydVariationWeight, ExactMeanDoesNotDependOnOrderOrParts)
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> value(0.0, 1.0 / 3.0);
+  std::vector<double> v(10000);
+  double sum = 0.0;
+  for (double& x : v)
+  {
+    x = value(rng) * value(rng); // (many small values, as surface variations)
+    sum += x;
+  }
+  asmcore::ExactMean whole;
+  for (double x : v)
+  {
+    whole.Add(x);
+  }
+  EXPECT_NEAR(whole.Value(), sum / static_cast<double>(v.size()), 1e-12);
+  // Three parts in another order, their sums added: the same mean, exactly.
+  std::shuffle(v.begin(), v.end(), rng);
+  asmcore::ExactMean parts[3];
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    parts[i % 3].Add(v[i]);
+  }
+  asmcore::ExactMean merged;
+  for (const auto& part : parts)
+  {
+    for (std::size_t k = 0; k < merged.Sums.size(); ++k)
+    {
+      merged.Sums[k] += part.Sums[k];
+    }
+  }
+  EXPECT_EQ(merged.Value(), whole.Value());
+  EXPECT_EQ(merged.Sums, whole.Sums);
+  // Empty: 0; out-of-range terms clamped.
+  EXPECT_EQ(asmcore::ExactMean().Value(), 0.0);
+  asmcore::ExactMean clamped;
+  clamped.Add(-1.0);
+  clamped.Add(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(clamped.Value(), 0.0);
 }
