@@ -276,17 +276,25 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     }
     outArrays.push_back(array);
   }
+  // A cell's records are sorted by x as an unsigned integer (ordered as the
+  // doubles, -0 as +0), then runs of equal x by y, z and the bytes.
   struct Item
   {
-    double P[3];
+    std::uint64_t X;
     const double* Record;
   };
+  auto orderedBits = [](double x) {
+    x = x == 0.0 ? 0.0 : x; // (-0 == +0)
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof(bits));
+    return (bits >> 63) ? ~bits : bits | (std::uint64_t(1) << 63);
+  };
   auto before = [payloadEnd](const Item& a, const Item& b) {
-    for (int k = 0; k < 3; ++k)
+    for (int k = 1; k < 3; ++k)
     {
-      if (a.P[k] != b.P[k])
+      if (a.Record[k] != b.Record[k])
       {
-        return a.P[k] < b.P[k];
+        return a.Record[k] < b.Record[k];
       }
     }
     return std::memcmp(a.Record + 3, b.Record + 3, sizeof(double) * (payloadEnd - 3)) < 0;
@@ -305,9 +313,22 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
         asmcore::Prefetch(received.data() + grid.Order[i + Ahead] * width);
       }
       const double* r = received.data() + grid.Order[i] * width;
-      items.push_back({ { r[0], r[1], r[2] }, r });
+      items.push_back({ orderedBits(r[0]), r });
     }
-    std::sort(items.begin(), items.end(), before);
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.X < b.X; });
+    for (auto run = items.begin(); run != items.end();)
+    {
+      auto end = run + 1;
+      while (end != items.end() && end->X == run->X)
+      {
+        ++end;
+      }
+      if (end - run > 1)
+      {
+        std::sort(run, end, before);
+      }
+      run = end;
+    }
     std::int64_t ijk[3];
     partition.Grid.Unpack(grid.CellKey[c], ijk);
     const char owned = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
