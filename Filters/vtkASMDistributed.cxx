@@ -274,26 +274,21 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   const LocalCloud& cloud = share.Cloud;
   std::vector<Index> capacity;
   std::vector<double> variation;
-  const std::size_t n = cloud.Ids.size();
-  for (std::size_t i = 0; i < n;)
+  for (std::size_t c = 0; c < cloud.CellKeys.size(); ++c)
   {
-    std::size_t j = i + 1;
-    while (j < n && cloud.Keys[j] == cloud.Keys[i])
-    {
-      ++j;
-    }
+    const Index i = cloud.CellStart[c];
+    const Index j = cloud.CellStart[c + 1];
     if (cloud.Owned[i])
     {
-      share.OwnedKeys.push_back(cloud.Keys[i]);
-      capacity.push_back(static_cast<Index>(j - i));
+      share.OwnedKeys.push_back(cloud.CellKeys[c]);
+      capacity.push_back(j - i);
       // The same frame the core computes (same points, same order).
       variation.push_back(asmcore::VariationWeightOf(parameters) != 0.0
-          ? asmcore::ComputeCellFrame(cloud.Xyz.data(),
-              asmcore::IdView(cloud.Ids.data() + i, static_cast<std::size_t>(j - i)))
+          ? asmcore::ComputeCellFrame(
+              cloud.Xyz.data(), asmcore::IdView::Range(i, static_cast<std::size_t>(j - i)))
               .SurfaceVariation()
           : 0.0);
     }
-    i = j;
   }
   share.Budgets = GlobalBudgets(comm, share.OwnedKeys, capacity, variation, parameters,
     std::min(parameters.NumberOfSamples, total));

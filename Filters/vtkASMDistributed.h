@@ -203,11 +203,15 @@ SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSp
 struct LocalCloud
 {
   std::vector<double> Xyz;                  ///< owned and halo points
-  std::vector<Index> Ids;                   ///< 0 .. n-1
-  std::vector<std::uint64_t> Keys;          ///< cell key of each point
+  std::vector<Index> CellStart;             ///< cell c: points [CellStart[c], CellStart[c + 1])
+  std::vector<std::uint64_t> CellKeys;      ///< the cells' keys, ascending
   std::vector<char> Owned;                  ///< 1: in a cell this process owns
-  std::vector<long long> SourceRank;        ///< process that held the point
+  std::vector<int> SourceRank;              ///< process that held the point
   std::vector<long long> SourceId;          ///< its point id there
+
+  Index Size() const { return static_cast<Index>(this->Xyz.size() / 3); }
+  /// The points, 0 .. Size() - 1.
+  asmcore::IdView Ids() const { return asmcore::IdView::Identity(this->Xyz.size() / 3); }
   vtkSmartPointer<vtkPointData> PointData;  ///< the transferred arrays
   std::vector<std::string> Dropped;         ///< arrays not transferred (and why)
 };

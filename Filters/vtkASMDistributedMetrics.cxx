@@ -119,7 +119,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   vtkNew<vtkPolyData> bare;
   const LocalCloud cloud = Redistribute(comm, bare, xyz, ids, slabs, HaloRings);
   std::vector<Index> owned;
-  for (std::size_t i = 0; i < cloud.Ids.size(); ++i)
+  for (std::size_t i = 0; i < cloud.Owned.size(); ++i)
   {
     if (cloud.Owned[i])
     {
@@ -173,7 +173,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
       mineToMeasure.push_back(j);
     }
   }
-  const asmcore::Neighbors localTree(oxyz, cloud.Ids);
+  const asmcore::Neighbors localTree(oxyz, cloud.Ids());
   std::vector<double> nearest, plane;
   asmcore::SurfaceDistances(
     all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors, &plane, &nearest);
@@ -196,7 +196,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
         orient.insert(orient.end(), allNormals.data() + 3 * j, allNormals.data() + 3 * j + 3);
       }
     }
-    const auto estimates = asmcore::EstimateCurvature(oxyz, cloud.Ids, localTree, queries.data(),
+    const auto estimates = asmcore::EstimateCurvature(oxyz, cloud.Ids(), localTree, queries.data(),
       static_cast<Index>(mineToMeasure.size()), haveNormals ? orient.data() : nullptr,
       curvatureNeighbors, asmcore::Execution{});
     for (std::size_t m = 0; m < estimates.size(); ++m)

@@ -253,8 +253,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   const asmcore::CellGrid grid = asmcore::BuildCellGrid(
     cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid);
   // (From here on cloud.Xyz is rewritten in canonical order.)
-  cloud.Ids.resize(n);
-  cloud.Keys.resize(n);
+  cloud.CellStart.assign(grid.CellStart.begin(), grid.CellStart.end());
+  cloud.CellKeys = grid.CellKey;
   cloud.Owned.resize(n);
   cloud.SourceRank.resize(n);
   cloud.SourceId.resize(n);
@@ -340,10 +340,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
       {
         cloud.Xyz[3 * i + a] = r[a];
       }
-      cloud.Ids[i] = static_cast<Index>(i);
-      cloud.Keys[i] = grid.CellKey[c];
       cloud.Owned[i] = owned;
-      cloud.SourceRank[i] = static_cast<long long>(r[payloadEnd]);
+      cloud.SourceRank[i] = static_cast<int>(r[payloadEnd]);
       cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
       for (std::size_t a = 0; a < slots.size(); ++a)
       {

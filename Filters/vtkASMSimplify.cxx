@@ -224,7 +224,7 @@ int vtkASMSimplify::RequestData(
     }
     xyz = share.Cloud.Xyz.data();
     idList = asmcore::PointIds(); // (the share's points are 0 .. n-1)
-    ids = asmcore::IdView::Identity(share.Cloud.Ids.size());
+    ids = share.Cloud.Ids();
     coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
