@@ -131,7 +131,8 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// (LloydVariationWeight) are relative to the mean over the samples of the
   /// whole cloud: each process sums its output cells' samples (ExactMean)
   /// and calls this once per iteration, CollectiveSumsOf(parameters) times
-  /// in a run that is not cut short. Unset: the samples passed are the cloud.
+  /// in a run that is not cut short. Unset: the mean is over this run's
+  /// output cells' samples (all of them without OutputCell).
   std::function<void(std::vector<long long>& values)> SumOverProcesses;
   ///@}
 };
