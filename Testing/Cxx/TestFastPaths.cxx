@@ -104,6 +104,9 @@ TEST(FastPaths, GridMatchesDefinitionOnBitmapAndHashPaths)
     twice.insert(twice.end(), ids.rbegin(), ids.rend());
     EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), twice, spec, UnevenTwoThreads()),
       reference.NumberOfCells());
+    // The keys themselves, ascending (distributed runs send them around).
+    EXPECT_EQ(asmcore::OccupiedCellKeys(c.data(), twice, spec), reference.CellKey);
+    EXPECT_EQ(asmcore::OccupiedCellKeys(c.data(), ids, spec, UnevenTwoThreads()), reference.CellKey);
   }
 }
 
