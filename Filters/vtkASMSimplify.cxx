@@ -217,7 +217,11 @@ int vtkASMSimplify::RequestData(
   {
     // One grid, owners, halo, budgets; then the core runs on this process's
     // cells (owned and halo) as if they were the whole input.
+    // (The grid, the redistribution and the budgets: progress only; an
+    // abort waits for the core, whose processes agree on it.)
+    this->UpdateProgress(0.0);
     share = asmvtk::PrepareSimplify(comm, input, xyz.Doubles, ids, parameters);
+    this->UpdateProgress(0.2);
     for (const std::string& dropped : share.Cloud.Dropped)
     {
       vtkWarningMacro(<< "Point array " << dropped << " is not passed on in a distributed run.");
@@ -293,7 +297,7 @@ int vtkASMSimplify::RequestData(
     parameters.SumOverProcesses = sums.Hook();
   }
   asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
-    asmvtk::SMPExecution(this, 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
+    asmvtk::SMPExecution(this, distributed ? 0.2 : 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
   if (distributed)
   {
     if (parameters.SumOverProcesses)

@@ -7,6 +7,7 @@
 // independent of the input order, bit for bit.
 #include "FilterHelpers.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkDummyController.h"
@@ -157,5 +158,37 @@ TEST(DistributedFilter, CanonicalOrderMakesTheOutputIndependentOfInputOrder)
     const auto b = simplify(shuffled, mode);
     ASSERT_EQ(a.size(), 500u) << "mode " << mode;
     EXPECT_EQ(a, b) << "mode " << mode;
+  }
+}
+
+// A distributed run reports its progress in order (the preparation first,
+// then the core from 0.2), up to 1.
+TEST(DistributedFilter, ProgressIsMonotonic)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(20000, 1.0, 4);
+  vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(cloud);
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    vtkNew<vtkDummyController> controller;
+    vtkNew<vtkASMSimplify> asm_;
+    asm_->SetController(controller);
+    asm_->AlwaysDistributeOn();
+    asm_->SetMode(mode);
+    asm_->SetFillHoles(false);
+    asm_->SetOutputFraction(0.05);
+    asm_->SetInputData(input);
+    std::vector<double> reported;
+    vtkNew<vtkCallbackCommand> observer;
+    observer->SetClientData(&reported);
+    observer->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+      static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(data));
+    });
+    asm_->AddObserver(vtkCommand::ProgressEvent, observer);
+    asm_->Update();
+    ASSERT_GE(reported.size(), 3u) << "mode " << mode;
+    EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end())) << "mode " << mode;
+    EXPECT_EQ(reported.back(), 1.0) << "mode " << mode;
+    EXPECT_NE(std::find(reported.begin(), reported.end(), 0.2), reported.end())
+      << "mode " << mode << ": the preparation's end";
   }
 }
