@@ -44,7 +44,8 @@
  * passes every cell's budget, halo cells included, through
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
  * samples are output (vtkASMDistributed.h). The final Lloyd iterations
- * are local too (2 rings each, 4 when weighted), except the mean variation
+ * are local too (2 rings each; 4 when weighted, 2 for the first one after a
+ * cross-cell step: InfluenceRingsOf), except the mean variation
  * of their weights, which a distributed driver sums over all processes
  * (SumOverProcesses). The hole filling and the covering refinement are
  * global and are not supported in distributed runs; the snapped-hole bound
@@ -63,8 +64,8 @@ constexpr int MaxCrossCellIterations = 4;
 /// Largest number of final Lloyd iterations (vtkASMSimplify's clamp).
 constexpr int MaxFinalLloydIterations = 8;
 /// Rings of cells a cell's result may depend on with vtkASMSimplify's
-/// ranges: one for Lemma 2, two per cross-cell iteration, four per
-/// (weighted) final iteration, two for the final assignment.
+/// ranges (a bound): one for Lemma 2, two per cross-cell iteration, four
+/// per (weighted) final iteration, two for the final assignment.
 constexpr int InfluenceRings = 1 + 2 * MaxCrossCellIterations + 4 * MaxFinalLloydIterations + 2;
 
 /// The rings a cell's result depends on with these parameters (FillHoles
