@@ -30,19 +30,33 @@ struct Output
   double Members = 0.0;                      // ClusterSize summed
 };
 
-Output Simplify(vtkPolyData* input, int mode)
+// A filter that takes the distributed path on one process (Fill Holes off:
+// distributed runs switch it off with a warning).
+vtkSmartPointer<vtkASMSimplify> DistributedFilter(int mode)
 {
   vtkNew<vtkDummyController> controller;
-  vtkNew<vtkASMSimplify> asm_;
-  asm_->SetController(controller);
-  asm_->AlwaysDistributeOn();
-  asm_->SetMode(mode);
-  asm_->SetFillHoles(false); // (switched off in distributed runs, with a warning)
+  auto filter = vtkSmartPointer<vtkASMSimplify>::New();
+  filter->SetController(controller); // (the filter holds it)
+  filter->AlwaysDistributeOn();
+  filter->SetMode(mode);
+  filter->SetFillHoles(false);
+  return filter;
+}
+
+// `input` simplified to `count` points on the distributed path.
+vtkSmartPointer<vtkPolyData> SimplifyTo(vtkPolyData* input, int mode, vtkIdType count)
+{
+  vtkSmartPointer<vtkASMSimplify> asm_ = DistributedFilter(mode);
   asm_->SetTargetModeToNumberOfOutputPoints();
-  asm_->SetNumberOfOutputPoints(400);
+  asm_->SetNumberOfOutputPoints(count);
   asm_->SetInputData(input);
   asm_->Update();
-  vtkPolyData* out = asm_->GetOutput();
+  return asm_->GetOutput();
+}
+
+Output Simplify(vtkPolyData* input, int mode)
+{
+  vtkSmartPointer<vtkPolyData> out = SimplifyTo(input, mode, 400);
   Output run;
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
@@ -127,17 +141,7 @@ TEST(DistributedFilter, CanonicalOrderMakesTheOutputIndependentOfInputOrder)
     return pd;
   };
   auto simplify = [](vtkPolyData* input, int mode) {
-    vtkNew<vtkDummyController> controller;
-    vtkNew<vtkASMSimplify> asm_;
-    asm_->SetController(controller);
-    asm_->AlwaysDistributeOn();
-    asm_->SetMode(mode);
-    asm_->SetFillHoles(false);
-    asm_->SetTargetModeToNumberOfOutputPoints();
-    asm_->SetNumberOfOutputPoints(500);
-    asm_->SetInputData(input);
-    asm_->Update();
-    vtkPolyData* out = asm_->GetOutput();
+    vtkSmartPointer<vtkPolyData> out = SimplifyTo(input, mode, 500);
     std::vector<std::array<double, 4>> result;
     vtkDataArray* value = out->GetPointData()->GetArray("Value");
     for (vtkIdType i = 0; value && i < out->GetNumberOfPoints(); ++i)
@@ -169,12 +173,7 @@ TEST(DistributedFilter, ProgressIsMonotonic)
   vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(cloud);
   for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
   {
-    vtkNew<vtkDummyController> controller;
-    vtkNew<vtkASMSimplify> asm_;
-    asm_->SetController(controller);
-    asm_->AlwaysDistributeOn();
-    asm_->SetMode(mode);
-    asm_->SetFillHoles(false);
+    vtkSmartPointer<vtkASMSimplify> asm_ = DistributedFilter(mode);
     asm_->SetOutputFraction(0.05);
     asm_->SetInputData(input);
     std::vector<double> reported;
