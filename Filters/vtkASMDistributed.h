@@ -36,9 +36,9 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path runs FillHoles and
- *    CoveringRounds (feature mode), which distributed runs do not (7), so it
- *    matches them only with those off. The automatic cell size is searched first on points
+ *    AlwaysDistribute is on; the serial path runs CoveringRounds (feature
+ *    mode, off by default), which distributed runs do not (7), so it
+ *    matches them only with that off. The automatic cell size is searched first on points
  *    picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
@@ -60,25 +60,37 @@
  *    samples and clusters depend on the points within
  *    asmcore::InfluenceRingsOf(parameters) rings of cells (key point
  *    validation across borders: 1; each CrossCellIterations Lloyd step: 2;
- *    each FinalLloydIterations step: 4 when weighted by the variations of
- *    the clusters around (the first one 2 after a cross-cell step, whose
- *    assignment it reuses), 2 otherwise; the final assignment: 2), given the
- *    grid and the budgets. The halo is that plus FeatureHaloMargin = 2 rings
- *    (13 by default), for the repair of empty clusters (FillEmptyClusters
- *    reads cluster sizes two rings away). The weighted steps' mean variation
+ *    each hole-filling round: 2; each FinalLloydIterations step: 4 when
+ *    weighted by the variations of the clusters around (the first one 2
+ *    after a cross-cell step or a hole-filling round, whose assignment it
+ *    reuses), 2 otherwise; the final assignment: 2), given the grid, the
+ *    budgets and the hole filling's moves. The halo is that plus
+ *    FeatureHaloMargin = 2 rings (21 by default, 13 with FillHoles off), for
+ *    the repair of empty clusters (FillEmptyClusters reads cluster sizes two
+ *    rings away). The weighted steps' mean variation
  *    is of the whole cloud: each process sums its owned samples' in fixed
  *    point (asmcore::ExactMean), and the sums are added over the processes
- *    (SumOverProcesses, CollectiveSums), so that the mean does not depend on
- *    the partition.
+ *    (SumOverProcesses), so that the mean does not depend on the partition.
+ *    The hole filling's moves are global (a sample moves from anywhere to
+ *    the largest gaps of the whole cloud): each process ranks its owned
+ *    cells' samples (the most crowded) and points (the farthest from every
+ *    sample) and computes its candidates' removal costs; the rankings and
+ *    costs are gathered (GatherOverProcesses), and every process runs the
+ *    same greedy on them, so it makes the moves of a one-process run and
+ *    applies them to the cells it holds (a sample may leave this process's
+ *    cells or arrive from another's). A cost that moves made stale is
+ *    computed again by its owner and gathered again (with up to 63 more
+ *    stale ones), so the number of collectives depends on the data:
+ *    CollectiveChannel lets a process whose run ended early take part in the
+ *    others' collectives until every process is done.
  *    Every process learns every cell's budget (ShareAllBudgets), and the
  *    core simplifies the halo cells too with their TRUE budgets (hooks
  *    CellBudget = TrueBudgetOf, OutputCell = Owns): their samples are exact
  *    wherever an owned cell can see them, and only the owned cells' samples
  *    are output, with all their members (halo points included; points of
  *    owned cells that join a halo cell's sample are output by that cell's
- *    owner). Limits: FillHoles ranks every sample and point of the cloud (a
- *    global step) and is switched off with a warning, CoveringRounds (off
- *    by default) silently.
+ *    owner). Limits: CoveringRounds (off by default), a global step, is
+ *    switched off.
  *    BoundSnappedHoles, whose bound is the largest hole of the whole cloud,
  *    runs after the core, over all processes (BoundSnappedHolesAcross).
  *    Points that no sample
@@ -268,22 +280,27 @@ void ShareAllBudgets(const Communication& comm, SimplifyShare& share);
 void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz,
   asmcore::SimplifyResult& result, const asmcore::Execution& execution);
 
-/// Feature mode: the core's SumOverProcesses hook over `comm`
-/// (asmcore::SimplifyParameters), counting its calls; Finish() makes the
-/// calls this process's run did not make (no points of its own, a run cut
-/// short), with zeros, so that every process makes
-/// asmcore::CollectiveSumsOf(parameters) of them before the next collective.
-class CollectiveSums
+/// Feature mode: the core's collective hooks over `comm`
+/// (asmcore::SimplifyParameters: SumOverProcesses, GatherOverProcesses).
+/// How many collectives a run makes depends on its data (the hole filling
+/// gathers until its moves are decided), so a process whose run ended
+/// early (no points of its own, a run cut short) cannot make them ahead:
+/// every collective is a gather that carries whether its sender still runs,
+/// and Finish() takes part in the others' remaining ones with nothing until
+/// no process runs. Call Finish() after the core on every process.
+class CollectiveChannel
 {
 public:
-  CollectiveSums(const Communication& comm, const asmcore::SimplifyParameters& parameters);
-  std::function<void(std::vector<long long>&)> Hook();
+  explicit CollectiveChannel(const Communication& comm);
+  std::function<void(std::vector<long long>&)> SumHook();
+  std::function<void(std::vector<double>&)> GatherHook();
   void Finish();
 
 private:
+  /// One collective: this process's payload (when running); returns the
+  /// payloads of the processes that run, in process order.
+  std::vector<std::vector<double>> Round(bool running, const std::vector<double>& payload);
   const Communication& Comm;
-  int Expected = 0;
-  int Made = 0;
 };
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the

@@ -27,27 +27,80 @@ int HaloRingsFor(const asmcore::SimplifyParameters& parameters)
   return std::max(HaloRings, asmcore::InfluenceRingsOf(parameters) + FeatureHaloMargin);
 }
 
-CollectiveSums::CollectiveSums(const Communication& comm, const asmcore::SimplifyParameters& parameters)
+CollectiveChannel::CollectiveChannel(const Communication& comm)
   : Comm(comm)
-  , Expected(asmcore::CollectiveSumsOf(parameters))
 {
 }
 
-std::function<void(std::vector<long long>&)> CollectiveSums::Hook()
+std::vector<std::vector<double>> CollectiveChannel::Round(
+  bool running, const std::vector<double>& payload)
+{
+  // Each process sends (running, length, payload); the gathered values are
+  // walked in process order.
+  std::vector<double> mine{ running ? 1.0 : 0.0, running ? static_cast<double>(payload.size()) : 0.0 };
+  if (running)
+  {
+    mine.insert(mine.end(), payload.begin(), payload.end());
+  }
+  const std::vector<double> all = this->Comm.AllGather(mine);
+  std::vector<std::vector<double>> payloads;
+  for (std::size_t at = 0; at + 1 < all.size();)
+  {
+    const auto length = static_cast<std::size_t>(all[at + 1]);
+    if (all[at] != 0.0)
+    {
+      payloads.emplace_back(all.begin() + static_cast<std::ptrdiff_t>(at + 2),
+        all.begin() + static_cast<std::ptrdiff_t>(at + 2 + length));
+    }
+    at += 2 + length;
+  }
+  return payloads;
+}
+
+std::function<void(std::vector<long long>&)> CollectiveChannel::SumHook()
 {
   return [this](std::vector<long long>& values) {
-    ++this->Made;
-    this->Comm.Sum(values);
+    // Each value as two exact 32-bit halves (sums of fixed-point terms pass
+    // 2^53).
+    std::vector<double> halves(2 * values.size());
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      const auto u = static_cast<unsigned long long>(values[k]);
+      halves[2 * k] = static_cast<double>(u >> 32);
+      halves[2 * k + 1] = static_cast<double>(u & 0xFFFFFFFFULL);
+    }
+    std::vector<unsigned long long> sum(values.size(), 0);
+    for (const std::vector<double>& other : this->Round(true, halves))
+    {
+      for (std::size_t k = 0; k < values.size() && 2 * k + 1 < other.size(); ++k)
+      {
+        sum[k] += (static_cast<unsigned long long>(other[2 * k]) << 32) +
+          static_cast<unsigned long long>(other[2 * k + 1]);
+      }
+    }
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      values[k] = static_cast<long long>(sum[k]); // (two's complement: exact)
+    }
   };
 }
 
-void CollectiveSums::Finish()
+std::function<void(std::vector<double>&)> CollectiveChannel::GatherHook()
 {
-  // (The core's sums are ExactMean::Sums: three values.)
-  for (; this->Made < this->Expected; ++this->Made)
+  return [this](std::vector<double>& values) {
+    std::vector<double> all;
+    for (const std::vector<double>& other : this->Round(true, values))
+    {
+      all.insert(all.end(), other.begin(), other.end());
+    }
+    values.swap(all);
+  };
+}
+
+void CollectiveChannel::Finish()
+{
+  while (!this->Round(false, {}).empty())
   {
-    std::vector<long long> zeros(asmcore::ExactMean().Sums.size(), 0);
-    this->Comm.Sum(zeros);
   }
 }
 

@@ -67,6 +67,7 @@ set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/Common.h
   Core/GridOccupancy.h
   Core/GroupBy.h
+  Core/HoleFillingRecords.h
   Core/SpatialBuckets.h
   vtkASMFilterUtilities.h
 )

@@ -188,15 +188,9 @@ int vtkASMSimplify::RequestData(
   parameters.CoverEveryCell = this->CoverEveryCell;
   parameters.BudgetExponent = this->BudgetExponent;
   parameters.CrossCellIterations = this->CrossCellIterations;
+  // Hole filling ranks the samples and points of the whole cloud: distributed
+  // runs gather their rankings (GatherOverProcesses).
   parameters.FillHoles = this->FillHoles;
-  if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving &&
-    parameters.FillHoles)
-  {
-    // Hole filling ranks every sample and point of the cloud: not distributed.
-    vtkWarningMacro(<< "FillHoles is not supported in distributed runs: switched off (the "
-                       "output then does not depend on the number of processes).");
-    parameters.FillHoles = false;
-  }
   parameters.FeatureSamplesPerCell = this->FeatureSamplesPerCell;
   parameters.VariationBudget = this->VariationBudget;
   parameters.VariationCap = this->VariationCap;
@@ -291,10 +285,11 @@ int vtkASMSimplify::RequestData(
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
 
-  asmvtk::CollectiveSums sums(comm, parameters);
+  asmvtk::CollectiveChannel channel(comm);
   if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving)
   {
-    parameters.SumOverProcesses = sums.Hook();
+    parameters.SumOverProcesses = channel.SumHook();
+    parameters.GatherOverProcesses = channel.GatherHook();
   }
   asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
     asmvtk::SMPExecution(this, distributed ? 0.2 : 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
@@ -302,7 +297,7 @@ int vtkASMSimplify::RequestData(
   {
     if (parameters.SumOverProcesses)
     {
-      sums.Finish(); // (the calls a run cut short did not make)
+      channel.Finish(); // (with the processes still running, if any)
     }
     // Figures of the whole cloud: sums and maxima over the processes.
     const Index keys = comm.Sum(result.NumberOfKeyPoints);

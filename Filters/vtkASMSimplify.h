@@ -92,11 +92,12 @@
  * next to "vtkOriginalPointIds". Both modes run distributed; 1, 2, 3...
  * processes give the same points (up to floating-point summation order). A
  * run on one process takes the distributed path when mpiexec (or another
- * MPI launcher) started it, or with AlwaysDistribute; FillHoles and
- * CoveringRounds (FEATURE_PRESERVING) are global and switched off in
- * distributed runs (FillHoles with a warning), FinalLloydIterations widen
- * the halo, and BoundSnappedHoles runs over all processes. The serial path
- * gives the same points too when FillHoles and CoveringRounds are off.
+ * MPI launcher) started it, or with AlwaysDistribute. In FEATURE_PRESERVING
+ * mode, FillHoles gathers its rankings and removal costs over all processes
+ * (every process makes the moves of a serial run), FillHoles and
+ * FinalLloydIterations widen the halo, BoundSnappedHoles runs over all
+ * processes, and CoveringRounds (off by default), global, is switched off.
+ * The serial path gives the same points too when CoveringRounds is off.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
@@ -270,7 +271,9 @@ public:
    * followed by a Lloyd step) that moves the samples whose removal costs least
    * (at most HoleFillFraction of them per round) to the input points farthest
    * from every sample; default on. Global: a distributed run (several
-   * processes, or AlwaysDistribute) switches it off with a warning. It is
+   * processes, or AlwaysDistribute) gathers the rankings of samples and
+   * points and the removal costs over the processes, so that it makes the
+   * moves of a serial run, with a halo 2 cell rings wider per round. It is
    * about 45 % of the mode's time: off, the mode runs about 1.8 times as
    * fast, with larger holes (README, "Faster settings of the default mode").
    */
@@ -373,8 +376,8 @@ public:
    * nearest (instead of the member nearest the cluster's centre), then
    * re-forms the clusters. 0: the input point nearest the centre, which
    * keeps the clusters tightest; with BoundSnappedHoles on, the rounds
-   * gain nothing on the largest hole (quality benchmark). Global like
-   * FillHoles: distributed runs switch it off.
+   * gain nothing on the largest hole (quality benchmark). Global:
+   * distributed runs switch it off.
    */
   vtkSetClampMacro(CoveringRounds, int, 0, 8);
   vtkGetMacro(CoveringRounds, int);
@@ -590,12 +593,12 @@ public:
    * With several processes, or one process started by an MPI launcher
    * (mpiexec -n 1 pvbatch --mpi), the run is always distributed. When on, any
    * run with a controller is distributed too (a cell's points taken in
-   * coordinate order instead of input order; FillHoles off), so that it
+   * coordinate order instead of input order; CoveringRounds off), so that it
    * gives the same points as 2, 3... processes; default off: a desktop or
    * builtin session (or no controller) runs the serial algorithm,
    * unchanged. Per-cell results do not depend on the order of the points,
    * so the serial path gives the same points as 2, 3... processes already,
-   * except with FillHoles on.
+   * except with CoveringRounds on.
    */
   vtkSetMacro(AlwaysDistribute, bool);
   vtkGetMacro(AlwaysDistribute, bool);

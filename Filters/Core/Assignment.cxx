@@ -201,14 +201,18 @@ void AssignToSamples(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
 
 void UpdateAssignment(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<Index>& previous, const std::vector<char>& moved,
-  PointArray<SampleId>& assign, const Execution& execution)
+  PointArray<SampleId>& assign, const Execution& execution, Index previousCount)
 {
   const Index count = samples.Size();
   const Index cells = grid.NumberOfCells();
-  std::vector<Index> renumber(static_cast<std::size_t>(count));
+  // Old slot -> new slot (-1: the sample left the set).
+  std::vector<Index> renumber(static_cast<std::size_t>(previousCount < 0 ? count : previousCount), -1);
   for (Index s = 0; s < count; ++s)
   {
-    renumber[previous[s]] = s;
+    if (previous[s] >= 0)
+    {
+      renumber[previous[s]] = s;
+    }
   }
   const double* pos = samples.Position.data();
   execution.Run(0, cells, [&](Index b, Index e) {

@@ -113,18 +113,22 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
 {
   // A Lloyd step moves a sample to the centroid of points of its cell's
   // ring, each assigned among the samples of its own ring: 2 rings. A
-  // weighted step also reads the variations of the clusters around those
-  // samples, measured on an assignment of their own: 4; but the first one
-  // measures them on the assignment of the cross-cell step before it
-  // (computed on that step's samples, whose influence is 2 rings narrower):
-  // 2 when there is such a step (FillHoles and CoveringRounds off).
+  // hole-filling round is one such step after its moves, which every process
+  // makes alike (HoleFilling.h), from spreads, gaps and removal costs that
+  // read 2 rings around a process's own cells: 2 rings. A weighted step
+  // also reads the variations of the clusters around those samples,
+  // measured on an assignment of their own: 4; but the first one measures
+  // them on the assignment of the step before it (computed on that step's
+  // samples, whose influence is 2 rings narrower): 2 when there is such a
+  // step (CoveringRounds off).
+  const int holeRounds = parameters.FillHoles ? std::max(0, parameters.HoleFillRounds) : 0;
   const int finalIterations = std::max(0, parameters.FinalLloydIterations);
   int finalRings = 2 * finalIterations;
   if (parameters.LloydVariationWeight > 0.0 && finalIterations > 0)
   {
-    finalRings = (CrossIterations(parameters) > 0 ? 2 : 4) + 4 * (finalIterations - 1);
+    finalRings = (CrossIterations(parameters) > 0 || holeRounds > 0 ? 2 : 4) + 4 * (finalIterations - 1);
   }
-  return 1 + 2 * CrossIterations(parameters) + finalRings + 2;
+  return 1 + 2 * CrossIterations(parameters) + 2 * holeRounds + finalRings + 2;
 }
 
 int CollectiveSumsOf(const SimplifyParameters& parameters)
@@ -272,7 +276,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   {
     samples.Start[c + 1] = samples.Start[c] + budget[c];
   }
-  const Index count = samples.Start[cells];
+  Index count = samples.Start[cells]; // (the hole filling may change this run's share)
   if (count > static_cast<Index>(std::numeric_limits<SampleId>::max()))
   {
     result.Aborted = true; // (SampleId: more samples than the assignments can number)
@@ -339,31 +343,61 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
       return result;
     }
   }
+  // The cells whose samples are output (empty: all): the hole filling ranks
+  // those, and the final Lloyd iterations' mean is over them.
+  std::vector<char> output;
+  if (parameters.OutputCell)
+  {
+    output.resize(static_cast<std::size_t>(cells));
+    for (Index c = 0; c < cells; ++c)
+    {
+      output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
+    }
+  }
+  // Hole filling; a distributed run ranks its output cells and gathers
+  // (HoleFilling.h): the moves of a one-process run.
+  HoleFillScope scope;
+  if (parameters.FillHoles && parameters.HoleFillRounds > 0 && parameters.GatherOverProcesses)
+  {
+    std::vector<double> owned(1, 0.0);
+    for (Index c = 0; c < cells; ++c)
+    {
+      owned[0] += output.empty() || output[c] ? static_cast<double>(samples.Start[c + 1] - samples.Start[c]) : 0.0;
+    }
+    parameters.GatherOverProcesses(owned);
+    scope.TotalSamples = static_cast<Index>(std::accumulate(owned.begin(), owned.end(), 0.0));
+    scope.Owned = output;
+    scope.Gather = parameters.GatherOverProcesses;
+  }
+  const Index totalSamples = scope.TotalSamples >= 0 ? scope.TotalSamples : count;
   for (int round = 0; parameters.FillHoles && round < parameters.HoleFillRounds; ++round)
   {
     AssignToSamples(P, grid, neighbors, samples, assign, execution);
     std::vector<Index> order;
-    const auto maxMoves = static_cast<Index>(
-      std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(count)));
+    const auto maxMoves = static_cast<Index>(std::llround(
+      std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(totalSamples)));
     std::vector<char> moved;
-    if (FillHoles(P, grid, neighbors, assign, maxMoves, samples, order, moved, execution) == 0)
+    const Index before = count;
+    if (FillHoles(P, grid, neighbors, assign, maxMoves, samples, order, moved, execution, 32, scope) == 0)
     {
       break;
     }
-    std::vector<SampleInfo> regrouped(info.size());
+    count = samples.Size();
+    std::vector<SampleInfo> regrouped(static_cast<std::size_t>(count));
     execution.Run(0, cells, [&](Index b, Index e) {
       for (Index c = b; c < e; ++c)
       {
         for (Index s = samples.Start[c]; s < samples.Start[c + 1]; ++s)
         {
-          regrouped[s] = info[order[s]];
+          // (A sample from a cell not held here is a free one.)
+          regrouped[s] = order[s] >= 0 ? info[order[s]] : SampleInfo();
           regrouped[s].Owner = c;
         }
       }
     });
     info.swap(regrouped);
     // One Lloyd step re-centres the moved samples and their neighbours.
-    UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, execution);
+    UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, execution, before);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
   }
 
@@ -380,16 +414,6 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // assignment the steps above left (a sample moved since by one Lloyd step
   // at most), the next ones assign again first (weights measured on the
   // weighted clusters would keep shrinking the same samples).
-  std::vector<char> output; // (cells whose samples are output; empty: all)
-  if (parameters.OutputCell && parameters.FinalLloydIterations > 0 &&
-    parameters.LloydVariationWeight > 0.0)
-  {
-    output.resize(static_cast<std::size_t>(cells));
-    for (Index c = 0; c < cells; ++c)
-    {
-      output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
-    }
-  }
   for (int it = 0; it < parameters.FinalLloydIterations; ++it)
   {
     std::vector<double> scale;

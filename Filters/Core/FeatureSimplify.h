@@ -45,12 +45,16 @@
  * SimplifyParameters::CellBudget, with OutputCell selecting the cells whose
  * samples are output (vtkASMDistributed.h). The final Lloyd iterations
  * are local too (2 rings each; 4 when weighted, 2 for the first one after a
- * cross-cell step: InfluenceRingsOf), except the mean variation
- * of their weights, which a distributed driver sums over all processes
- * (SumOverProcesses). The hole filling and the covering refinement are
- * global and are not supported in distributed runs; the snapped-hole bound
- * is global too, and a distributed driver takes it after this function,
- * over all processes (SnappedHoles.h: BoundSnappedHoles off here).
+ * cross-cell step or a hole-filling round: InfluenceRingsOf), except the
+ * mean variation of their weights, which a distributed driver sums over all
+ * processes (SumOverProcesses). The hole filling's moves are global: each
+ * process ranks its output cells' samples and points and the rankings and
+ * removal costs are gathered (GatherOverProcesses, HoleFilling.h), so that
+ * every process makes the same moves; its Lloyd step is local (2 rings per
+ * round). The covering refinement is global and not supported in
+ * distributed runs; the snapped-hole bound is global too, and a distributed
+ * driver takes it after this function, over all processes (SnappedHoles.h:
+ * BoundSnappedHoles off here).
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h
@@ -63,19 +67,26 @@ namespace asmcore
 constexpr int MaxCrossCellIterations = 4;
 /// Largest number of final Lloyd iterations (vtkASMSimplify's clamp).
 constexpr int MaxFinalLloydIterations = 8;
+/// Hole-filling rounds of vtkASMSimplify (SimplifyParameters::HoleFillRounds).
+constexpr int DefaultHoleFillRounds = 4;
 /// Rings of cells a cell's result may depend on with vtkASMSimplify's
-/// ranges (a bound): one for Lemma 2, two per cross-cell iteration, four
-/// per (weighted) final iteration, two for the final assignment.
-constexpr int InfluenceRings = 1 + 2 * MaxCrossCellIterations + 4 * MaxFinalLloydIterations + 2;
+/// ranges (a bound): one for Lemma 2, two per cross-cell iteration, two per
+/// hole-filling round, four per (weighted) final iteration, two for the
+/// final assignment.
+constexpr int InfluenceRings =
+  1 + 2 * MaxCrossCellIterations + 2 * DefaultHoleFillRounds + 4 * MaxFinalLloydIterations + 2;
 
-/// The rings a cell's result depends on with these parameters (FillHoles
-/// and CoveringRounds off: they are global).
+/// The rings a cell's result depends on with these parameters, given the
+/// global grid, budgets and hole-filling moves (CoveringRounds off: it is
+/// global).
 VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 
 /// How many times a run with these parameters calls SumOverProcesses (one
-/// not cut short by an abort, an empty input or a limit; a distributed
-/// driver makes the missing calls with zeros so that every process makes as
-/// many): once per final Lloyd iteration when they are weighted.
+/// not cut short by an abort, an empty input or a limit): once per final
+/// Lloyd iteration when they are weighted. (GatherOverProcesses is called
+/// as many times as the hole filling's data asks: a distributed driver lets
+/// a process whose run ended early take part in the others' collectives
+/// until all are done, vtkASMDistributed.h.)
 VTKASMFILTERS_EXPORT int CollectiveSumsOf(const SimplifyParameters& parameters);
 
 /// Simplify in the feature-preserving mode (see above); same contract as

@@ -59,9 +59,9 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   int CrossCellIterations = 1;   ///< across cell borders, clamped to MaxCrossCellIterations
   double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
   bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre (see BoundSnappedHoles)
-  bool FillHoles = true;        ///< bounded hole filling (global; not for distributed runs)
+  bool FillHoles = true;        ///< bounded hole filling (global: GatherOverProcesses in distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
-  int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step
+  int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step (DefaultHoleFillRounds)
   /// Mean budget per non-empty cell aimed at by the automatic cell size in
   /// this mode (SamplesPerCell is the paper mode's); <= 0: SamplesPerCell.
   double FeatureSamplesPerCell = 4.0;
@@ -93,7 +93,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// Rounds of covering refinement (Covering.h) of the input-point samples
   /// (InputPointSamples or Snap); 0: the input point nearest the cluster's
   /// centre (the default: BoundSnappedHoles bounds the largest hole without
-  /// moving every sample). Global, like FillHoles: not for distributed runs.
+  /// moving every sample). Global: not for distributed runs.
   int CoveringRounds = 0;
   /// A point of a cell of fewer than 3 points (no PCA frame) that is the
   /// Lemma 2 extreme away from its neighbours within KeyPointRadius is a key
@@ -134,6 +134,13 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// in a run that is not cut short. Unset: the mean is over this run's
   /// output cells' samples (all of them without OutputCell).
   std::function<void(std::vector<long long>& values)> SumOverProcesses;
+  /// Feature-preserving mode with FillHoles: replaces `values` by every
+  /// process's `values`, concatenated in process order (collective; the
+  /// number of calls depends on the data, the same on every process). The
+  /// hole filling ranks the samples and points of the output cells and
+  /// gathers the rankings and removal costs, so that every process makes
+  /// the moves of a one-process run (HoleFilling.h). Unset: one process.
+  std::function<void(std::vector<double>& values)> GatherOverProcesses;
   ///@}
 };
 

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The hooks of the feature-preserving mode used by distributed runs (Grid,
 // CellBudget with TRUE budgets for halo cells, OutputCell, CloudCentroid,
-// SumOverProcesses): a cloud cut into slabs of grid cells, each slab
-// simplified with a halo of InfluenceRingsOf + 2 rings (vtkASMDistributed.h,
-// HaloRingsFor), gives exactly the serial samples and clusters (FillHoles
-// off, as distributed runs have it; the final Lloyd iterations with the
-// slabs run as concurrent threads, whose variation sums meet as MPI's would).
+// SumOverProcesses, GatherOverProcesses): a cloud cut into slabs of grid
+// cells, each slab simplified with a halo of InfluenceRingsOf + 2 rings
+// (vtkASMDistributed.h, HaloRingsFor), gives exactly the serial samples and
+// clusters (the slabs run as concurrent threads, whose sums and gathers
+// meet as MPI's would: the final Lloyd iterations' mean, the hole filling's
+// rankings and removal costs).
 // And the serial result of both modes does not depend on the order of the
 // input points.
 #include "Core/Budget.h"
@@ -44,7 +45,7 @@ asmcore::SimplifyParameters FeatureParameters()
   asmcore::SimplifyParameters p;
   p.NumberOfSamples = 4000;
   p.SamplesPerCell = 2.0;
-  p.FillHoles = false; // global: off in distributed runs
+  p.FillHoles = false; // (see HoleFillingOverSlabs)
   p.BoundSnappedHoles = false; // likewise (taken after the run, over all processes)
   p.FinalLloydIterations = 0;  // (see FinalStepsOverSlabs)
   return p;
@@ -93,6 +94,50 @@ private:
   std::vector<long long> Total, Result;
 };
 
+// An all-gather among `parties` threads: every party's values, in party order.
+class ThreadGather
+{
+public:
+  explicit ThreadGather(int parties)
+    : Parties(parties)
+    , Parts(static_cast<std::size_t>(parties))
+  {
+  }
+  void Gather(int party, std::vector<double>& values)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    const long long generation = this->Generation;
+    this->Parts[party] = values;
+    if (++this->Arrived == this->Parties)
+    {
+      this->Result.clear();
+      for (const auto& part : this->Parts)
+      {
+        this->Result.insert(this->Result.end(), part.begin(), part.end());
+      }
+      this->Arrived = 0;
+      ++this->Generation;
+      this->Done.notify_all();
+    }
+    else
+    {
+      this->Done.wait(lock, [&] { return this->Generation != generation; });
+    }
+    values = this->Result;
+    ++this->Calls;
+  }
+  int Calls = 0;
+
+private:
+  std::mutex Mutex;
+  std::condition_variable Done;
+  int Parties;
+  int Arrived = 0;
+  long long Generation = 0;
+  std::vector<std::vector<double>> Parts;
+  std::vector<double> Result;
+};
+
 void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
 {
   const asmtest::Cloud cloud = asmtest::Sphere(points, 2.0, 5);
@@ -137,6 +182,7 @@ void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
   }
   // The slabs run at once (each one's sums wait for the others').
   ThreadSums sums(slabs);
+  ThreadGather gather(slabs);
   std::vector<asmcore::SimplifyResult> results(static_cast<std::size_t>(slabs));
   std::vector<std::thread> threads;
   for (int part = 0; part < slabs; ++part)
@@ -148,6 +194,7 @@ void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
       q.CellBudget = [&](std::uint64_t key) { return budgetOf.at(key); };
       q.OutputCell = [&, part](std::uint64_t key) { return slabOf(xIndex(key)) == part; };
       q.SumOverProcesses = [&](std::vector<long long>& v) { sums.Sum(v); };
+      q.GatherOverProcesses = [&, part](std::vector<double>& v) { gather.Gather(part, v); };
       results[part] = asmcore::Simplify(cloud.data(), mine[part], nullptr, q);
     });
   }
@@ -156,6 +203,7 @@ void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
     t.join();
   }
   EXPECT_EQ(sums.Calls, slabs * asmcore::CollectiveSumsOf(p));
+  EXPECT_EQ(gather.Calls > 0, p.FillHoles) << "the hole filling gathers (only)";
   for (const asmcore::SimplifyResult& result : results)
   {
     for (const auto& sample : result.Samples)
@@ -235,6 +283,27 @@ TEST(DistributedFeatureHooks, FinalStepsOverSlabs)
   p.LloydVariationWeight = 0.0;
   ASSERT_EQ(asmcore::CollectiveSumsOf(p), 0);
   CheckSlabs(p, 4, 80000);
+}
+
+// The hole filling (as by default: four rounds, with the final Lloyd
+// iterations after them): each slab ranks its own samples and points and
+// computes its candidates' removal costs; the gathered rankings and costs
+// give every slab the moves of the serial run. A grid of about 100 cells
+// across the sphere, so that the 21-ring halo leaves parts of it out.
+TEST(DistributedFeatureHooks, HoleFillingOverSlabs)
+{
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.FillHoles = true;
+  p.NumberOfSamples = 50000;
+  p.FeatureSamplesPerCell = 1.0;
+  p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
+  // Lemma 2: 1; the cross-cell step: 2; four rounds: 8; the final steps: 2
+  // and 4; the final clusters: 2.
+  EXPECT_EQ(asmcore::InfluenceRingsOf(p), 19);
+  CheckSlabs(p, 3, 200000);
+  p.FinalLloydIterations = 0;
+  p.HoleFillRounds = 2;
+  CheckSlabs(p, 4, 200000);
 }
 
 TEST(DistributedFeatureHooks, FeatureResultDoesNotDependOnPointOrder)

@@ -37,7 +37,7 @@ asm = ASMSimplify(Input=spread, TargetMode="Number Of Output Points",  # noqa: F
 if MODE == "paper":
     asm.Mode = "Paper"
 else:
-    asm.FeatureSamplesPerCell = 1.0  # the default mode, FillHoles switched off by the filter
+    asm.FeatureSamplesPerCell = 1.0  # the default mode, FillHoles on (gathered over the processes)
 kpe = KeyPointError(Original=spread, Simplified=asm)  # noqa: F405
 kpe.UpdatePipeline()
 

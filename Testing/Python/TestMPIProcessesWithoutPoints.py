@@ -3,9 +3,13 @@
 in both modes. The grid has too few cell layers for three slabs, so some
 processes own no cell and receive no point: they must still take part in
 every collective of the run (the feature mode's final Lloyd iterations sum
-a mean over the processes; a process without points makes those calls with
-zeros), so the run ends (no hang: the test's timeout) with exactly N_s
-points over the processes, none of them on a process without points.
+a mean over the processes, and its hole filling gathers rankings and removal
+costs as many times as its data asks: a process without points serves
+those collectives with nothing until every process is done), so the run
+ends (no hang: the test's timeout) with exactly N_s points over the
+processes, none of them on a process without points. The feature mode runs
+twice: as by default (N_s = 4 makes no hole-filling move), and with Hole
+Fill Fraction 0.5 (two moves a round).
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -35,10 +39,13 @@ points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
 piece = vtkPolyData()
 piece.SetPoints(points)
 
-for mode in (vtkASMSimplify.FEATURE_PRESERVING, vtkASMSimplify.PAPER):
+for mode, fraction in ((vtkASMSimplify.FEATURE_PRESERVING, None),
+                       (vtkASMSimplify.FEATURE_PRESERVING, 0.5), (vtkASMSimplify.PAPER, None)):
     asm = vtkASMSimplify()
     asm.SetInputData(piece)
     asm.SetMode(mode)
+    if fraction is not None:
+        asm.SetHoleFillFraction(fraction)
     asm.SetTargetModeToNumberOfOutputPoints()
     asm.SetNumberOfOutputPoints(NS)
     if mode == vtkASMSimplify.FEATURE_PRESERVING:

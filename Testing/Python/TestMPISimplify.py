@@ -9,15 +9,16 @@ sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3.
 
 Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
-FEATURE_PRESERVING mode, N_s = 8000 with FeatureSamplesPerCell 1, a grid fine
-enough so that each process's halo of 13 cell rings does not cover the whole
-bunny; FillHoles stays at its default: distributed runs switch it off with a
-warning). Optional third argument "serial": pvbatch started without mpiexec
-(one process, AlwaysDistribute off), so the serial path runs (FillHoles off
-in the feature mode, as a distributed run has it, and CoveringRounds, off by
-default; the final Lloyd iterations, whose weights a distributed run
-normalises over all processes, and BoundSnappedHoles, which it takes over
-all processes, on); its output must match the distributed runs.
+FEATURE_PRESERVING mode, N_s = 8000 with FeatureSamplesPerCell 1, a grid of
+52 cells along the bunny, so that with two processes each one's halo of 21
+cell rings does not cover the whole bunny; every refinement at its default:
+FillHoles, whose rankings and removal costs a distributed run gathers over
+all processes, the final Lloyd iterations, whose weights it normalises over
+all processes, and BoundSnappedHoles, which it takes over all processes).
+Optional third argument "serial": pvbatch started without mpiexec (one
+process, AlwaysDistribute off), so the serial path runs (CoveringRounds, off
+by default, is the one step a distributed run does not take); its output
+must match the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -72,9 +73,7 @@ else:
     assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
     asm.SetFeatureSamplesPerCell(1.0)
     assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
-    assert asm.GetCoveringRounds() == 0  # global too: distributed runs switch it off
-    if SERIAL:
-        asm.FillHolesOff()
+    assert asm.GetCoveringRounds() == 0  # global: distributed runs switch it off
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which
