@@ -33,7 +33,7 @@ parser.add_argument("--fraction", type=float, default=0.01)
 parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
 parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
-# FillHoles off, as distributed runs have it
+# FillHoles off (the faster setting; distributed runs gather its rankings)
 parser.add_argument("--no-fill-holes", action="store_true")
 parser.add_argument("--final-lloyd-iterations", type=int)  # (default: the filter's)
 parser.add_argument("--no-covering", action="store_true")  # CoveringRounds 0, as distributed runs do

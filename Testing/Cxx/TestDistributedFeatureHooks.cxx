@@ -309,6 +309,9 @@ TEST(DistributedFeatureHooks, HoleFillingOverSlabs)
 TEST(DistributedFeatureHooks, FeatureResultDoesNotDependOnPointOrder)
 {
   CheckOrder(FeatureParameters());
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.FillHoles = true; // (exact ties between gap points, rare: by cell, then place in the cell)
+  CheckOrder(p);
 }
 
 TEST(DistributedFeatureHooks, PaperResultDoesNotDependOnPointOrder)
