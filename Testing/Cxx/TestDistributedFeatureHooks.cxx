@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <random>
@@ -51,70 +52,28 @@ asmcore::SimplifyParameters FeatureParameters()
   return p;
 }
 
-// An all-reduce sum among `parties` threads (MPI's, for slabs run at once).
-class ThreadSums
+// A collective among `parties` threads (MPI's, for slabs run at once): each
+// party's values wait for the others', and every party gets `combine` of
+// all of them (in party order).
+template <typename T>
+class ThreadCollective
 {
 public:
-  explicit ThreadSums(int parties)
-    : Parties(parties)
-  {
-  }
-  void Sum(std::vector<long long>& values)
-  {
-    std::unique_lock<std::mutex> lock(this->Mutex);
-    const long long generation = this->Generation;
-    this->Total.resize(values.size(), 0);
-    for (std::size_t k = 0; k < values.size(); ++k)
-    {
-      this->Total[k] += values[k];
-    }
-    if (++this->Arrived == this->Parties)
-    {
-      this->Result.swap(this->Total);
-      this->Total.clear();
-      this->Arrived = 0;
-      ++this->Generation;
-      this->Done.notify_all();
-    }
-    else
-    {
-      this->Done.wait(lock, [&] { return this->Generation != generation; });
-    }
-    values = this->Result;
-    ++this->Calls;
-  }
-  int Calls = 0;
-
-private:
-  std::mutex Mutex;
-  std::condition_variable Done;
-  int Parties;
-  int Arrived = 0;
-  long long Generation = 0;
-  std::vector<long long> Total, Result;
-};
-
-// An all-gather among `parties` threads: every party's values, in party order.
-class ThreadGather
-{
-public:
-  explicit ThreadGather(int parties)
+  using Combine = std::function<std::vector<T>(const std::vector<std::vector<T>>&)>;
+  ThreadCollective(int parties, Combine combine)
     : Parties(parties)
     , Parts(static_cast<std::size_t>(parties))
+    , Join(std::move(combine))
   {
   }
-  void Gather(int party, std::vector<double>& values)
+  void Meet(int party, std::vector<T>& values)
   {
     std::unique_lock<std::mutex> lock(this->Mutex);
     const long long generation = this->Generation;
     this->Parts[party] = values;
     if (++this->Arrived == this->Parties)
     {
-      this->Result.clear();
-      for (const auto& part : this->Parts)
-      {
-        this->Result.insert(this->Result.end(), part.begin(), part.end());
-      }
+      this->Result = this->Join(this->Parts);
       this->Arrived = 0;
       ++this->Generation;
       this->Done.notify_all();
@@ -134,9 +93,34 @@ private:
   int Parties;
   int Arrived = 0;
   long long Generation = 0;
-  std::vector<std::vector<double>> Parts;
-  std::vector<double> Result;
+  std::vector<std::vector<T>> Parts;
+  std::vector<T> Result;
+  Combine Join;
 };
+
+// The sums' all-reduce, the hole filling's all-gather.
+std::vector<long long> SumOf(const std::vector<std::vector<long long>>& parts)
+{
+  std::vector<long long> total(parts[0].size(), 0);
+  for (const auto& part : parts)
+  {
+    for (std::size_t k = 0; k < total.size(); ++k)
+    {
+      total[k] += part[k];
+    }
+  }
+  return total;
+}
+
+std::vector<double> Concatenated(const std::vector<std::vector<double>>& parts)
+{
+  std::vector<double> all;
+  for (const auto& part : parts)
+  {
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  return all;
+}
 
 void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
 {
@@ -181,8 +165,8 @@ void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
     smallestPart = std::min(smallestPart, mine[part].size());
   }
   // The slabs run at once (each one's sums wait for the others').
-  ThreadSums sums(slabs);
-  ThreadGather gather(slabs);
+  ThreadCollective<long long> sums(slabs, SumOf);
+  ThreadCollective<double> gather(slabs, Concatenated);
   std::vector<asmcore::SimplifyResult> results(static_cast<std::size_t>(slabs));
   std::vector<std::thread> threads;
   for (int part = 0; part < slabs; ++part)
@@ -193,8 +177,8 @@ void CheckSlabs(asmcore::SimplifyParameters p, int slabs, Index points = 20000)
       q.CloudCentroid = centroid;
       q.CellBudget = [&](std::uint64_t key) { return budgetOf.at(key); };
       q.OutputCell = [&, part](std::uint64_t key) { return slabOf(xIndex(key)) == part; };
-      q.SumOverProcesses = [&](std::vector<long long>& v) { sums.Sum(v); };
-      q.GatherOverProcesses = [&, part](std::vector<double>& v) { gather.Gather(part, v); };
+      q.SumOverProcesses = [&, part](std::vector<long long>& v) { sums.Meet(part, v); };
+      q.GatherOverProcesses = [&, part](std::vector<double>& v) { gather.Meet(part, v); };
       results[part] = asmcore::Simplify(cloud.data(), mine[part], nullptr, q);
     });
   }
