@@ -267,8 +267,8 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 
   // 2. Owners, redistribution with the halo, canonical order.
-  const SlabPartition slabs = MakeSlabPartition(comm, share.Grid, xyz, ids);
-  share.Cloud = Redistribute(comm, input, xyz, ids, slabs, HaloRingsFor(parameters));
+  share.Partition = MakeSlabPartition(comm, share.Grid, xyz, ids);
+  share.Cloud = Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters));
 
   // 3. The owned cells (consecutive runs of a key), and one global budget.
   const LocalCloud& cloud = share.Cloud;

@@ -63,11 +63,19 @@
  *    each hole-filling round: 2; each FinalLloydIterations step: 4 when
  *    weighted by the variations of the clusters around (the first one 2
  *    after a cross-cell step or a hole-filling round, whose assignment it
- *    reuses), 2 otherwise; the final assignment: 2), given the grid, the
- *    budgets and the hole filling's moves. The halo is that plus
- *    FeatureHaloMargin = 2 rings (21 by default, 13 with FillHoles off), for
- *    the repair of empty clusters (FillEmptyClusters reads cluster sizes two
- *    rings away). The weighted steps' mean variation
+ *    reuses), 2 otherwise; the final assignment: 2; 19 by default), given
+ *    the grid, the budgets and the hole filling's moves. A halo that wide
+ *    would be simplified redundantly by every neighbour, so instead the
+ *    halo cells' samples are exchanged with their owners after every step
+ *    that moves samples (the sampling inside the cells, each Lloyd step,
+ *    each hole-filling round: the core's ShareSamples hook,
+ *    CollectiveChannel::ShareHook): then every step starts from exact
+ *    samples in every cell this process holds, and the halo needs only the
+ *    rings one step reads, asmcore::InfluenceRingsPerStep (4 with weighted
+ *    final iterations, 2 otherwise), plus FeatureHaloMargin = 2 rings for
+ *    the repair of empty clusters (FillEmptyClusters reads cluster sizes
+ *    two rings away): 6 by default. Each exchange sends the samples of the
+ *    cells within 6 rings of a slab boundary to the neighbour(s). The weighted steps' mean variation
  *    is of the whole cloud: each process sums its owned samples' in fixed
  *    point (asmcore::ExactMean), and the sums are added over the processes
  *    (SumOverProcesses), so that the mean does not depend on the partition.
@@ -131,14 +139,16 @@ using asmcore::Index;
 constexpr int HaloRings = 2;
 
 /// Extra rings of the feature-preserving mode's halo beyond
-/// asmcore::InfluenceRingsOf: the repair of empty clusters reads the
+/// asmcore::InfluenceRingsPerStep: the repair of empty clusters reads the
 /// cluster sizes of samples two rings away (vtkASMDistributedFeature.cxx).
 constexpr int FeatureHaloMargin = 2;
 
 /// The halo width of a run: HaloRings in Paper mode; in the
-/// feature-preserving mode InfluenceRingsOf(parameters) + FeatureHaloMargin
-/// (at least HaloRings), so that every owned cell's samples and clusters
-/// come out as in a one-process run.
+/// feature-preserving mode InfluenceRingsPerStep(parameters) +
+/// FeatureHaloMargin (at least HaloRings; 6 by default): the halo cells'
+/// samples are exchanged with their owners after every step
+/// (CollectiveChannel::ShareHook), so that every owned cell's samples and
+/// clusters come out as in a one-process run.
 int HaloRingsFor(const asmcore::SimplifyParameters& parameters);
 
 /// Budgets of cells (in ascending key order) by the rule of the mode:
@@ -252,6 +262,7 @@ struct SimplifyShare
   std::vector<Index> Budgets;           ///< their budgets (global apportionment)
   double Centroid[3] = { 0, 0, 0 };     ///< of the whole cloud
   double Diagonal = 0.0;                ///< of the whole cloud's bounding box
+  SlabPartition Partition;              ///< who owns which cells
   /// Feature mode: every cell of every process, ascending, and its budget.
   std::vector<std::uint64_t> AllKeys;
   std::vector<Index> AllBudgets;
@@ -294,12 +305,26 @@ public:
   explicit CollectiveChannel(const Communication& comm);
   std::function<void(std::vector<long long>&)> SumHook();
   std::function<void(std::vector<double>&)> GatherHook();
+  /// The core's ShareSamples hook: each process sends the samples of its
+  /// owned cells to the processes whose slab lies within `rings` cells
+  /// (their halo), and takes the ones it receives for its halo cells.
+  std::function<void(const std::vector<std::uint64_t>&, const std::vector<Index>&,
+    std::vector<double>&)>
+  ShareHook(const SimplifyShare& share, int rings);
   void Finish();
 
 private:
-  /// One collective: this process's payload (when running); returns the
-  /// payloads of the processes that run, in process order.
-  std::vector<std::vector<double>> Round(bool running, const std::vector<double>& payload);
+  enum Kind
+  {
+    Done = 0,
+    Data = 1,     ///< a gather or a sum: the payloads
+    Exchange = 2, ///< a personalised exchange follows (Communication::Exchange)
+  };
+  /// One collective: this process's kind and payload; returns the payloads
+  /// of the processes that still run, in process order (and whether one of
+  /// them asks for an exchange).
+  std::vector<std::vector<double>> Round(Kind kind, const std::vector<double>& payload,
+    bool* exchange = nullptr);
   const Communication& Comm;
 };
 

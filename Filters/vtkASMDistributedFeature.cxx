@@ -24,7 +24,7 @@ int HaloRingsFor(const asmcore::SimplifyParameters& parameters)
   {
     return HaloRings;
   }
-  return std::max(HaloRings, asmcore::InfluenceRingsOf(parameters) + FeatureHaloMargin);
+  return std::max(HaloRings, asmcore::InfluenceRingsPerStep(parameters) + FeatureHaloMargin);
 }
 
 CollectiveChannel::CollectiveChannel(const Communication& comm)
@@ -33,24 +33,29 @@ CollectiveChannel::CollectiveChannel(const Communication& comm)
 }
 
 std::vector<std::vector<double>> CollectiveChannel::Round(
-  bool running, const std::vector<double>& payload)
+  Kind kind, const std::vector<double>& payload, bool* exchange)
 {
-  // Each process sends (running, length, payload); the gathered values are
+  // Each process sends (kind, length, payload); the gathered values are
   // walked in process order.
-  std::vector<double> mine{ running ? 1.0 : 0.0, running ? static_cast<double>(payload.size()) : 0.0 };
-  if (running)
-  {
-    mine.insert(mine.end(), payload.begin(), payload.end());
-  }
+  std::vector<double> mine{ static_cast<double>(kind), static_cast<double>(payload.size()) };
+  mine.insert(mine.end(), payload.begin(), payload.end());
   const std::vector<double> all = this->Comm.AllGather(mine);
   std::vector<std::vector<double>> payloads;
+  if (exchange)
+  {
+    *exchange = false;
+  }
   for (std::size_t at = 0; at + 1 < all.size();)
   {
     const auto length = static_cast<std::size_t>(all[at + 1]);
-    if (all[at] != 0.0)
+    if (all[at] != static_cast<double>(Done))
     {
       payloads.emplace_back(all.begin() + static_cast<std::ptrdiff_t>(at + 2),
         all.begin() + static_cast<std::ptrdiff_t>(at + 2 + length));
+      if (exchange && all[at] == static_cast<double>(Exchange))
+      {
+        *exchange = true;
+      }
     }
     at += 2 + length;
   }
@@ -70,7 +75,7 @@ std::function<void(std::vector<long long>&)> CollectiveChannel::SumHook()
       halves[2 * k + 1] = static_cast<double>(u & 0xFFFFFFFFULL);
     }
     std::vector<unsigned long long> sum(values.size(), 0);
-    for (const std::vector<double>& other : this->Round(true, halves))
+    for (const std::vector<double>& other : this->Round(Data, halves))
     {
       for (std::size_t k = 0; k < values.size() && 2 * k + 1 < other.size(); ++k)
       {
@@ -89,7 +94,7 @@ std::function<void(std::vector<double>&)> CollectiveChannel::GatherHook()
 {
   return [this](std::vector<double>& values) {
     std::vector<double> all;
-    for (const std::vector<double>& other : this->Round(true, values))
+    for (const std::vector<double>& other : this->Round(Data, values))
     {
       all.insert(all.end(), other.begin(), other.end());
     }
@@ -97,10 +102,75 @@ std::function<void(std::vector<double>&)> CollectiveChannel::GatherHook()
   };
 }
 
+std::function<void(const std::vector<std::uint64_t>&, const std::vector<Index>&, std::vector<double>&)>
+CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
+{
+  return [this, &share, rings](const std::vector<std::uint64_t>& keys, const std::vector<Index>& start,
+           std::vector<double>& positions) {
+    // Owned cells to the processes whose halo holds them: slabs are
+    // contiguous along the axis, so those are the owners of the axis
+    // indices within `rings` (cell key halves, sample count, positions).
+    const SlabPartition& slabs = share.Partition;
+    std::vector<std::vector<double>> send(static_cast<std::size_t>(this->Comm.Size()));
+    for (std::size_t c = 0; c < keys.size(); ++c)
+    {
+      if (!share.Owns(keys[c]))
+      {
+        continue;
+      }
+      std::int64_t ijk[3];
+      share.Grid.Unpack(keys[c], ijk);
+      const std::int64_t i = ijk[slabs.Axis];
+      const Index n = start[c + 1] - start[c];
+      for (int q = slabs.OwnerOf(i - rings); q <= slabs.OwnerOf(i + rings); ++q)
+      {
+        if (q == this->Comm.Rank())
+        {
+          continue;
+        }
+        std::vector<double>& out = send[static_cast<std::size_t>(q)];
+        out.insert(out.end(), { static_cast<double>(keys[c] >> 32),
+                                static_cast<double>(keys[c] & 0xFFFFFFFFULL), static_cast<double>(n) });
+        out.insert(out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
+      }
+    }
+    this->Round(Exchange, {}); // (finished processes take part in the exchange too)
+    const std::vector<double> received = this->Comm.Exchange(send);
+    for (std::size_t at = 0; at + 2 < received.size();)
+    {
+      const std::uint64_t key = (static_cast<std::uint64_t>(received[at]) << 32) |
+        static_cast<std::uint64_t>(received[at + 1]);
+      const auto n = static_cast<Index>(received[at + 2]);
+      at += 3;
+      const auto it = std::lower_bound(keys.begin(), keys.end(), key);
+      if (it != keys.end() && *it == key)
+      {
+        const auto c = static_cast<std::size_t>(it - keys.begin());
+        if (start[c + 1] - start[c] == n) // (always: the same budgets and moves)
+        {
+          std::copy_n(received.begin() + static_cast<std::ptrdiff_t>(at), 3 * n,
+            positions.begin() + 3 * start[c]);
+        }
+      }
+      at += static_cast<std::size_t>(3 * n);
+    }
+  };
+}
+
 void CollectiveChannel::Finish()
 {
-  while (!this->Round(false, {}).empty())
+  for (;;)
   {
+    bool exchange = false;
+    if (this->Round(Done, {}, &exchange).empty())
+    {
+      break;
+    }
+    if (exchange)
+    {
+      std::vector<std::vector<double>> nothing(static_cast<std::size_t>(this->Comm.Size()));
+      this->Comm.Exchange(nothing);
+    }
   }
 }
 

@@ -290,6 +290,7 @@ int vtkASMSimplify::RequestData(
   {
     parameters.SumOverProcesses = channel.SumHook();
     parameters.GatherOverProcesses = channel.GatherHook();
+    parameters.ShareSamples = channel.ShareHook(share, asmvtk::HaloRingsFor(parameters));
   }
   asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
     asmvtk::SMPExecution(this, distributed ? 0.2 : 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));

@@ -273,7 +273,8 @@ public:
    * from every sample; default on. Global: a distributed run (several
    * processes, or AlwaysDistribute) gathers the rankings of samples and
    * points and the removal costs over the processes, so that it makes the
-   * moves of a serial run, with a halo 2 cell rings wider per round. It is
+   * moves of a serial run (and exchanges its halo cells' samples after each
+   * round). It is
    * about 45 % of the mode's time: off, the mode runs about 1.8 times as
    * fast, with larger holes (README, "Faster settings of the default mode").
    */
@@ -342,9 +343,9 @@ public:
    * FEATURE_PRESERVING: Lloyd iterations across cell borders after the hole
    * filling, before the final clusters (iterations, in [0, 8]); they tighten
    * the clusters that the hole filling moved; default 2. Local: a
-   * distributed run takes them with a wider halo (4 more cell rings per
-   * weighted iteration, 2 for the first after a cross-cell step, 2 per
-   * iteration when LloydVariationWeight is 0: 6 by default).
+   * distributed run exchanges its halo cells' samples after each one, and
+   * weighted ones (LloydVariationWeight) need a halo of 6 cell rings
+   * instead of 4.
    */
   vtkSetClampMacro(FinalLloydIterations, int, 0, 8);
   vtkGetMacro(FinalLloydIterations, int);

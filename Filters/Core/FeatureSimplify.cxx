@@ -131,6 +131,15 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
   return 1 + 2 * CrossIterations(parameters) + 2 * holeRounds + finalRings + 2;
 }
 
+int InfluenceRingsPerStep(const SimplifyParameters& parameters)
+{
+  // A weighted step reads the variations of the clusters of the samples
+  // around: their members' assignment, 4 rings (the first one reuses the
+  // previous step's assignment, which is exact 1 ring less far: the same
+  // 4). Any other step: 2.
+  return parameters.LloydVariationWeight > 0.0 && parameters.FinalLloydIterations > 0 ? 4 : 2;
+}
+
 int CollectiveSumsOf(const SimplifyParameters& parameters)
 {
   return parameters.Mode == SimplifyMode::Paper || parameters.LloydVariationWeight <= 0.0
@@ -326,6 +335,15 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   {
     return result;
   }
+  // (Distributed runs: the halo cells' samples from their owners, after
+  // every step that moves samples.)
+  auto shareSamples = [&]() {
+    if (parameters.ShareSamples)
+    {
+      parameters.ShareSamples(grid.CellKey, samples.Start, samples.Position);
+    }
+  };
+  shareSamples();
 
   // 5. Cross-cell refinement.
   PointArray<SampleId> assign; // (the distances are recomputed: AssignedDistance2)
@@ -338,6 +356,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   for (int it = 0; it < CrossIterations(parameters); ++it)
   {
     lloydStep();
+    shareSamples();
     if (abort(0.6 + 0.2 * (it + 1) / CrossIterations(parameters)))
     {
       return result;
@@ -399,6 +418,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     // One Lloyd step re-centres the moved samples and their neighbours.
     UpdateAssignment(P, grid, neighbors, samples, order, moved, assign, execution, before);
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+    shareSamples();
   }
 
   // Covering refinement of the input-point samples (Covering.h).
@@ -448,6 +468,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     AssignToSamples(
       P, grid, neighbors, samples, assign, execution, scale.empty() ? nullptr : scale.data());
     MoveToCentroids(P, grid, neighbors, assign, samples, execution);
+    shareSamples();
   }
 
   // Clusters: every point joins its nearest sample.

@@ -81,6 +81,14 @@ constexpr int InfluenceRings =
 /// global).
 VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 
+/// The rings of cells one step reads (given the global grid, budgets and
+/// hole-filling moves), when the samples of every cell are exchanged with
+/// its owner's after each step (SimplifyParameters::ShareSamples): 4 with
+/// weighted final Lloyd iterations, 2 otherwise (a Lloyd step, a
+/// hole-filling round, the final clusters; the key point validation reads
+/// 1).
+VTKASMFILTERS_EXPORT int InfluenceRingsPerStep(const SimplifyParameters& parameters);
+
 /// How many times a run with these parameters calls SumOverProcesses (one
 /// not cut short by an abort, an empty input or a limit): once per final
 /// Lloyd iteration when they are weighted. (GatherOverProcesses is called

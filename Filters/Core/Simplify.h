@@ -141,6 +141,18 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// gathers the rankings and removal costs, so that every process makes
   /// the moves of a one-process run (HoleFilling.h). Unset: one process.
   std::function<void(std::vector<double>& values)> GatherOverProcesses;
+  /// Feature-preserving mode: after every step that moves samples (the
+  /// sampling inside the cells, each cross-cell Lloyd step, each
+  /// hole-filling round, each final Lloyd iteration), called with this
+  /// run's cells (keys ascending), their samples (cell c: [start[c],
+  /// start[c + 1])) and the samples' positions: replaces the positions of
+  /// the samples of cells that another process owns by that owner's
+  /// (collective). A distributed driver then needs a halo of only
+  /// InfluenceRingsPerStep rings (plus its margin) instead of
+  /// InfluenceRingsOf. Unset: nothing is exchanged.
+  std::function<void(const std::vector<std::uint64_t>& cellKeys, const std::vector<Index>& start,
+    std::vector<double>& positions)>
+    ShareSamples;
   ///@}
 };
 
