@@ -309,6 +309,21 @@ TEST(DistributedFeatureHooks, FinalStepsOverSlabs)
   EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 80000));
 }
 
+// The default steps, hole filling included, on a grid of about 100 cells
+// across the sphere (200 k points).
+namespace
+{
+asmcore::SimplifyParameters HoleFillingParameters()
+{
+  asmcore::SimplifyParameters p = FeatureParameters();
+  p.FillHoles = true;
+  p.NumberOfSamples = 50000;
+  p.FeatureSamplesPerCell = 1.0;
+  p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
+  return p;
+}
+} // namespace
+
 // The hole filling (as by default: four rounds, with the final Lloyd
 // iterations after them): each slab ranks its own samples and points and
 // computes its candidates' removal costs; the gathered rankings and costs
@@ -316,11 +331,7 @@ TEST(DistributedFeatureHooks, FinalStepsOverSlabs)
 // across the sphere, so that the 21-ring halo leaves parts of it out.
 TEST(DistributedFeatureHooks, HoleFillingOverSlabs)
 {
-  asmcore::SimplifyParameters p = FeatureParameters();
-  p.FillHoles = true;
-  p.NumberOfSamples = 50000;
-  p.FeatureSamplesPerCell = 1.0;
-  p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
+  asmcore::SimplifyParameters p = HoleFillingParameters();
   // Lemma 2: 1; the cross-cell step: 2; four rounds: 8; the final steps: 2
   // and 4; the final clusters: 2.
   EXPECT_EQ(asmcore::InfluenceRingsOf(p), 19);
@@ -335,11 +346,7 @@ TEST(DistributedFeatureHooks, HoleFillingOverSlabs)
 // final iterations, gives the serial samples too.
 TEST(DistributedFeatureHooks, SharedSamplesNeedAHaloOfOneStep)
 {
-  asmcore::SimplifyParameters p = FeatureParameters();
-  p.FillHoles = true;
-  p.NumberOfSamples = 50000;
-  p.FeatureSamplesPerCell = 1.0;
-  p.FinalLloydIterations = asmcore::SimplifyParameters().FinalLloydIterations;
+  asmcore::SimplifyParameters p = HoleFillingParameters();
   EXPECT_EQ(asmcore::InfluenceRingsPerStep(p), 4);
   EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 200000, true));
   p.LloydVariationWeight = 0.0;
