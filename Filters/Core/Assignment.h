@@ -45,10 +45,10 @@ inline double AssignedDistance2(Coordinates xyz, const CellGrid& grid, const Sam
 /// = old slot, keeping the order of the samples that did not move; -1 for a
 /// sample that was not in the set; `previousCount` samples before, -1: as
 /// many as now), and `moved` flags the samples (new slots) whose position or
-/// owner cell changed (every sample with no old slot). Gives exactly what AssignToSamples gives (the nearest
-/// ring sample, ties: the lower index), but only the points whose sample
-/// moved are searched again; the others only compare with the moved samples
-/// of their ring. The points of a cell owning more than LargeCellBudget
+/// owner cell changed (every sample with no old slot). Gives exactly what
+/// AssignToSamples gives (the nearest ring sample, ties: the lower index),
+/// but only the points whose sample moved or left are searched again; the
+/// others only compare with the moved samples of their ring. The points of a cell owning more than LargeCellBudget
 /// samples are searched again (with a k-d tree).
 VTKASMFILTERS_EXPORT void UpdateAssignment(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,

@@ -381,7 +381,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     std::vector<double> owned(1, 0.0);
     for (Index c = 0; c < cells; ++c)
     {
-      owned[0] += output.empty() || output[c] ? static_cast<double>(samples.Start[c + 1] - samples.Start[c]) : 0.0;
+      const Index n = samples.Start[c + 1] - samples.Start[c];
+      owned[0] += output.empty() || output[c] ? static_cast<double>(n) : 0.0;
     }
     parameters.GatherOverProcesses(owned);
     scope.TotalSamples = static_cast<Index>(std::accumulate(owned.begin(), owned.end(), 0.0));
