@@ -36,9 +36,7 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path runs CoveringRounds (feature
- *    mode, off by default), which distributed runs do not (7), so it
- *    matches them only with that off. The automatic cell size is searched first on points
+ *    AlwaysDistribute is on; the serial path gives the same points (7). The automatic cell size is searched first on points
  *    picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
@@ -68,7 +66,7 @@
  *    would be simplified redundantly by every neighbour, so instead the
  *    halo cells' samples are exchanged with their owners after every step
  *    that moves samples (the sampling inside the cells, each Lloyd step,
- *    each hole-filling round: the core's ShareSamples hook,
+ *    each hole-filling or covering round: the core's ShareSamples hook,
  *    CollectiveChannel::ShareHook): then every step starts from exact
  *    samples in every cell this process holds, and the halo needs only the
  *    rings one step reads, asmcore::InfluenceRingsPerStep (4 with weighted
@@ -97,8 +95,7 @@
  *    wherever an owned cell can see them, and only the owned cells' samples
  *    are output, with all their members (halo points included; points of
  *    owned cells that join a halo cell's sample are output by that cell's
- *    owner). Limits: CoveringRounds (off by default), a global step, is
- *    switched off.
+ *    owner).
  *    BoundSnappedHoles, whose bound is the largest hole of the whole cloud,
  *    runs after the core, over all processes (BoundSnappedHolesAcross).
  *    Points that no sample

@@ -199,8 +199,8 @@ int vtkASMSimplify::RequestData(
   // of their weights is summed over the processes (SumOverProcesses).
   parameters.FinalLloydIterations = this->FinalLloydIterations;
   parameters.LloydVariationWeight = this->LloydVariationWeight;
-  // Covering refinement moves samples across the halo: not distributed.
-  parameters.CoveringRounds = distributed ? 0 : this->CoveringRounds;
+  // (Local: each sample moves within its own cluster.)
+  parameters.CoveringRounds = this->CoveringRounds;
   parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
   // The bound is the largest hole of the whole cloud: distributed runs take
   // it after the core's run, over all processes (BoundSnappedHolesAcross).

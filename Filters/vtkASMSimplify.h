@@ -94,10 +94,10 @@
  * run on one process takes the distributed path when mpiexec (or another
  * MPI launcher) started it, or with AlwaysDistribute. In FEATURE_PRESERVING
  * mode, FillHoles gathers its rankings and removal costs over all processes
- * (every process makes the moves of a serial run), FillHoles and
- * FinalLloydIterations widen the halo, BoundSnappedHoles runs over all
- * processes, and CoveringRounds (off by default), global, is switched off.
- * The serial path gives the same points too when CoveringRounds is off.
+ * (every process makes the moves of a serial run), the halo cells' samples
+ * are exchanged after every step (weighted FinalLloydIterations widen the
+ * halo to 6 cell rings), and BoundSnappedHoles runs over all processes. The
+ * serial path gives the same points too.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
@@ -377,8 +377,8 @@ public:
    * nearest (instead of the member nearest the cluster's centre), then
    * re-forms the clusters. 0: the input point nearest the centre, which
    * keeps the clusters tightest; with BoundSnappedHoles on, the rounds
-   * gain nothing on the largest hole (quality benchmark). Global:
-   * distributed runs switch it off.
+   * gain nothing on the largest hole (quality benchmark). Local (a sample
+   * moves within its own cluster): distributed runs take it too.
    */
   vtkSetClampMacro(CoveringRounds, int, 0, 8);
   vtkGetMacro(CoveringRounds, int);
@@ -594,12 +594,11 @@ public:
    * With several processes, or one process started by an MPI launcher
    * (mpiexec -n 1 pvbatch --mpi), the run is always distributed. When on, any
    * run with a controller is distributed too (a cell's points taken in
-   * coordinate order instead of input order; CoveringRounds off), so that it
+   * coordinate order instead of input order), so that it
    * gives the same points as 2, 3... processes; default off: a desktop or
    * builtin session (or no controller) runs the serial algorithm,
    * unchanged. Per-cell results do not depend on the order of the points,
-   * so the serial path gives the same points as 2, 3... processes already,
-   * except with CoveringRounds on.
+   * so the serial path gives the same points as 2, 3... processes already.
    */
   vtkSetMacro(AlwaysDistribute, bool);
   vtkGetMacro(AlwaysDistribute, bool);

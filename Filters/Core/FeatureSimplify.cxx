@@ -120,15 +120,18 @@ int InfluenceRingsOf(const SimplifyParameters& parameters)
   // measured on an assignment of their own: 4; but the first one measures
   // them on the assignment of the step before it (computed on that step's
   // samples, whose influence is 2 rings narrower): 2 when there is such a
-  // step (CoveringRounds off).
+  // step. A covering round moves each sample within its own cluster: 2.
   const int holeRounds = parameters.FillHoles ? std::max(0, parameters.HoleFillRounds) : 0;
+  const bool inputPoints = parameters.InputPointSamples || parameters.Snap;
+  const int coveringRounds = inputPoints ? std::max(0, parameters.CoveringRounds) : 0;
   const int finalIterations = std::max(0, parameters.FinalLloydIterations);
   int finalRings = 2 * finalIterations;
   if (parameters.LloydVariationWeight > 0.0 && finalIterations > 0)
   {
-    finalRings = (CrossIterations(parameters) > 0 || holeRounds > 0 ? 2 : 4) + 4 * (finalIterations - 1);
+    const bool stepBefore = CrossIterations(parameters) > 0 || holeRounds > 0 || coveringRounds > 0;
+    finalRings = (stepBefore ? 2 : 4) + 4 * (finalIterations - 1);
   }
-  return 1 + 2 * CrossIterations(parameters) + 2 * holeRounds + finalRings + 2;
+  return 1 + 2 * CrossIterations(parameters) + 2 * holeRounds + 2 * coveringRounds + finalRings + 2;
 }
 
 int InfluenceRingsPerStep(const SimplifyParameters& parameters)
@@ -427,6 +430,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   for (int round = 0; inputPoints && round < parameters.CoveringRounds; ++round)
   {
     RefineCovering(P, grid, neighbors, samples, assign, execution);
+    shareSamples();
   }
 
   // Final Lloyd iterations across cell borders. With LloydVariationWeight

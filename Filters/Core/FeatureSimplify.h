@@ -51,10 +51,11 @@
  * process ranks its output cells' samples and points and the rankings and
  * removal costs are gathered (GatherOverProcesses, HoleFilling.h), so that
  * every process makes the same moves; its Lloyd step is local (2 rings per
- * round). The covering refinement is global and not supported in
- * distributed runs; the snapped-hole bound is global too, and a distributed
- * driver takes it after this function, over all processes (SnappedHoles.h:
- * BoundSnappedHoles off here).
+ * round), and so is a covering round (2 rings). With ShareSamples, the
+ * samples of cells owned elsewhere are exchanged after every step, and a
+ * driver's halo needs only InfluenceRingsPerStep rings. The snapped-hole
+ * bound is global, and a distributed driver takes it after this function,
+ * over all processes (SnappedHoles.h: BoundSnappedHoles off here).
  */
 #ifndef asm_core_FeatureSimplify_h
 #define asm_core_FeatureSimplify_h
@@ -77,8 +78,7 @@ constexpr int InfluenceRings =
   1 + 2 * MaxCrossCellIterations + 2 * DefaultHoleFillRounds + 4 * MaxFinalLloydIterations + 2;
 
 /// The rings a cell's result depends on with these parameters, given the
-/// global grid, budgets and hole-filling moves (CoveringRounds off: it is
-/// global).
+/// global grid, budgets and hole-filling moves.
 VTKASMFILTERS_EXPORT int InfluenceRingsOf(const SimplifyParameters& parameters);
 
 /// The rings of cells one step reads (given the global grid, budgets and

@@ -359,6 +359,22 @@ TEST(DistributedFeatureHooks, SharedSamplesNeedAHaloOfOneStep)
     p, 6, 200000, false, asmcore::InfluenceRingsOf(p) - asmcore::InfluenceRingsPerStep(p) + 1));
 }
 
+// Covering rounds (off by default) move each sample within its own
+// cluster: local too, exact over slabs with the exchange after each round.
+TEST(DistributedFeatureHooks, CoveringRoundsOverSlabs)
+{
+  asmcore::SimplifyParameters p = HoleFillingParameters();
+  p.CoveringRounds = 2;
+  EXPECT_EQ(asmcore::InfluenceRingsOf(p), 23); // (2 more per round)
+  EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 200000, true));
+  // (The rounds move samples: the test is not that of the default.)
+  const asmtest::Cloud cloud = asmtest::Sphere(200000, 2.0, 5);
+  const std::vector<Index> ids = asmtest::AllIds(cloud);
+  const auto covered = Sorted(asmcore::Simplify(cloud.data(), ids, nullptr, p));
+  p.CoveringRounds = 0;
+  EXPECT_NE(covered, Sorted(asmcore::Simplify(cloud.data(), ids, nullptr, p)));
+}
+
 TEST(DistributedFeatureHooks, FeatureResultDoesNotDependOnPointOrder)
 {
   CheckOrder(FeatureParameters());

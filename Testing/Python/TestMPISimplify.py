@@ -16,9 +16,8 @@ FillHoles, whose rankings and removal costs a distributed run gathers over
 all processes, the final Lloyd iterations, whose weights it normalises over
 all processes, and BoundSnappedHoles, which it takes over all processes).
 Optional third argument "serial": pvbatch started without mpiexec (one
-process, AlwaysDistribute off), so the serial path runs (CoveringRounds, off
-by default, is the one step a distributed run does not take); its output
-must match the distributed runs.
+process, AlwaysDistribute off), so the serial path runs; its output must
+match the distributed runs.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -73,7 +72,7 @@ else:
     assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
     asm.SetFeatureSamplesPerCell(1.0)
     assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
-    assert asm.GetCoveringRounds() == 0  # global: distributed runs switch it off
+    assert asm.GetCoveringRounds() == 0  # (off by default; CoveringRoundsOverSlabs tests it)
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which
