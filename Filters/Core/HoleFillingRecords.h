@@ -103,12 +103,79 @@ struct Gap
   double Position[3] = { 0, 0, 0 };
 };
 
-// Every process's records of `width` doubles (gathered), parsed and sorted;
-// the first `keep` are kept.
+// Every Stride-th value of a process's ranked list travels first, to find
+// how much of each list may be among the best (RankThreshold).
+constexpr Index RankStride = 64;
+
+// A value that at least `keep` of the processes' values reach (or -infinity
+// when they have fewer), from each process's every `stride`-th value
+// (sampled[q]: the values at ranks 0, stride, 2 stride, ... of process q's
+// list, largest first): a process whose n sampled values reach t has at
+// least (n - 1) stride + 1 values that do. The largest such value, so that
+// few values beyond the best `keep` reach it (at most about
+// keep + (processes + 1) stride without ties).
+inline double RankThreshold(
+  const std::vector<std::vector<double>>& sampled, Index stride, Index keep)
+{
+  std::vector<std::pair<double, std::size_t>> all; // (value, process)
+  for (std::size_t q = 0; q < sampled.size(); ++q)
+  {
+    for (double v : sampled[q])
+    {
+      all.emplace_back(v, q);
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Index> reached(sampled.size(), 0);
+  Index lowerBound = 0; // values that surely reach the current one
+  for (std::size_t k = 0; k < all.size();)
+  {
+    const double v = all[k].first;
+    for (; k < all.size() && all[k].first == v; ++k)
+    {
+      lowerBound += reached[all[k].second]++ == 0 ? 1 : stride;
+    }
+    if (lowerBound >= keep)
+    {
+      return v;
+    }
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+// Every process's best records of `width` doubles (the first, the value they
+// are ranked by, larger first; `values`: this process's, best first),
+// gathered, parsed and sorted; the first `keep` are kept. Only the records
+// that may be among the best `keep` travel: every RankStride-th value of
+// each list is gathered first (RankThreshold), then the records that reach
+// the threshold.
 template <typename Record, typename Parse, typename Before>
 std::vector<Record> GatherRanked(const std::function<void(std::vector<double>&)>& gather,
   std::vector<double>& values, std::size_t width, Parse&& parse, Before&& before, Index keep)
 {
+  const std::size_t count = values.size() / width;
+  std::vector<double> sampled{ 0.0 }; // (how many, then the values)
+  for (std::size_t k = 0; k < count; k += static_cast<std::size_t>(RankStride))
+  {
+    sampled.push_back(values[width * k]);
+  }
+  sampled[0] = static_cast<double>(sampled.size() - 1);
+  gather(sampled);
+  std::vector<std::vector<double>> perProcess;
+  for (std::size_t at = 0; at < sampled.size();)
+  {
+    const auto n = static_cast<std::size_t>(sampled[at]);
+    perProcess.emplace_back(sampled.begin() + static_cast<std::ptrdiff_t>(at + 1),
+      sampled.begin() + static_cast<std::ptrdiff_t>(at + 1 + n));
+    at += 1 + n;
+  }
+  const double threshold = RankThreshold(perProcess, RankStride, keep);
+  std::size_t send = 0;
+  while (send < count && values[width * send] >= threshold)
+  {
+    ++send;
+  }
+  values.resize(width * send);
   gather(values);
   std::vector<Record> all(values.size() / width);
   for (std::size_t k = 0; k < all.size(); ++k)

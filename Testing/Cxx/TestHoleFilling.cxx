@@ -6,6 +6,7 @@
 #include "Core/CellNeighbors.h"
 #include "Core/Grid.h"
 #include "Core/HoleFilling.h"
+#include "Core/HoleFillingRecords.h"
 #include "Core/Selection.h"
 
 #include "TestHelpers.h"
@@ -108,6 +109,49 @@ TEST(HoleFilling, LargestFiniteIsTheDefinition)
   const std::vector<double> flat(100000, 1.5);
   const std::vector<Index> first = asmcore::LargestFinite(flat, 3, UnevenTwoThreads());
   EXPECT_EQ(first, (std::vector<Index>{ 0, 1, 2 }));
+}
+
+// The threshold below which no process need send its ranked records: at
+// least `keep` of all values reach it, so the best `keep` all do, and few
+// more than `keep` reach it.
+TEST(HoleFilling, RankThresholdKeepsTheBestAndLittleElse)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const Index stride = asmcore::holes::RankStride;
+  for (int processes : { 1, 2, 5 })
+  {
+    for (Index keep : { Index(0), Index(1), Index(100), Index(5000), Index(40000) })
+    {
+      std::vector<std::vector<double>> lists(static_cast<std::size_t>(processes));
+      std::vector<std::vector<double>> sampled(lists.size());
+      std::vector<double> all;
+      for (std::size_t q = 0; q < lists.size(); ++q)
+      {
+        lists[q].resize(static_cast<std::size_t>(1000 + 3000 * q)); // (uneven)
+        for (double& v : lists[q])
+        {
+          v = q == 1 ? 0.5 * uniform(random) : uniform(random); // (one process's values lower)
+        }
+        std::sort(lists[q].rbegin(), lists[q].rend());
+        for (std::size_t k = 0; k < lists[q].size(); k += static_cast<std::size_t>(stride))
+        {
+          sampled[q].push_back(lists[q][k]);
+        }
+        all.insert(all.end(), lists[q].begin(), lists[q].end());
+      }
+      const double t = asmcore::holes::RankThreshold(sampled, stride, keep);
+      const auto reach = static_cast<Index>(
+        std::count_if(all.begin(), all.end(), [t](double v) { return v >= t; }));
+      const auto total = static_cast<Index>(all.size());
+      EXPECT_GE(reach, std::min(keep, total)) << processes << " " << keep;
+      EXPECT_LE(reach, std::min(total, keep + (processes + 1) * stride)) << processes << " " << keep;
+      if (keep > total)
+      {
+        EXPECT_EQ(t, -std::numeric_limits<double>::infinity());
+      }
+    }
+  }
 }
 
 TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
