@@ -149,9 +149,8 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
   mine.reserve(W * keys.size());
   for (std::size_t c = 0; c < keys.size(); ++c)
   {
-    mine.insert(mine.end(), { static_cast<double>(keys[c] >> 32),
-                              static_cast<double>(keys[c] & 0xFFFFFFFFULL),
-                              static_cast<double>(capacity[c]), variation[c] });
+    asmcore::AppendAsDoubles(mine, keys[c]);
+    mine.insert(mine.end(), { static_cast<double>(capacity[c]), variation[c] });
   }
   long long n = static_cast<long long>(mine.size());
   std::vector<long long> counts(static_cast<std::size_t>(comm.Size()));

@@ -67,20 +67,17 @@ std::function<void(std::vector<long long>&)> CollectiveChannel::SumHook()
   return [this](std::vector<long long>& values) {
     // Each value as two exact 32-bit halves (sums of fixed-point terms pass
     // 2^53).
-    std::vector<double> halves(2 * values.size());
-    for (std::size_t k = 0; k < values.size(); ++k)
+    std::vector<double> halves;
+    for (long long v : values)
     {
-      const auto u = static_cast<unsigned long long>(values[k]);
-      halves[2 * k] = static_cast<double>(u >> 32);
-      halves[2 * k + 1] = static_cast<double>(u & 0xFFFFFFFFULL);
+      asmcore::AppendAsDoubles(halves, static_cast<std::uint64_t>(v));
     }
     std::vector<unsigned long long> sum(values.size(), 0);
     for (const std::vector<double>& other : this->Round(Data, halves))
     {
       for (std::size_t k = 0; k < values.size() && 2 * k + 1 < other.size(); ++k)
       {
-        sum[k] += (static_cast<unsigned long long>(other[2 * k]) << 32) +
-          static_cast<unsigned long long>(other[2 * k + 1]);
+        sum[k] += asmcore::FromDoubles(other.data() + 2 * k);
       }
     }
     for (std::size_t k = 0; k < values.size(); ++k)
@@ -129,8 +126,8 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
           continue;
         }
         std::vector<double>& out = send[static_cast<std::size_t>(q)];
-        out.insert(out.end(), { static_cast<double>(keys[c] >> 32),
-                                static_cast<double>(keys[c] & 0xFFFFFFFFULL), static_cast<double>(n) });
+        asmcore::AppendAsDoubles(out, keys[c]);
+        out.push_back(static_cast<double>(n));
         out.insert(out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
       }
     }
@@ -138,8 +135,7 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
     const std::vector<double> received = this->Comm.Exchange(send);
     for (std::size_t at = 0; at + 2 < received.size();)
     {
-      const std::uint64_t key = (static_cast<std::uint64_t>(received[at]) << 32) |
-        static_cast<std::uint64_t>(received[at + 1]);
+      const std::uint64_t key = asmcore::FromDoubles(received.data() + at);
       const auto n = static_cast<Index>(received[at + 2]);
       at += 3;
       const auto it = std::lower_bound(keys.begin(), keys.end(), key);
@@ -196,18 +192,15 @@ void ShareAllBudgets(const Communication& comm, SimplifyShare& share)
   mine.reserve(3 * share.OwnedKeys.size());
   for (std::size_t c = 0; c < share.OwnedKeys.size(); ++c)
   {
-    mine.insert(mine.end(), { static_cast<double>(share.OwnedKeys[c] >> 32),
-                              static_cast<double>(share.OwnedKeys[c] & 0xFFFFFFFFULL),
-                              static_cast<double>(share.Budgets[c]) });
+    asmcore::AppendAsDoubles(mine, share.OwnedKeys[c]);
+    mine.push_back(static_cast<double>(share.Budgets[c]));
   }
   const std::vector<double> all = comm.AllGather(mine);
   const std::size_t cells = all.size() / 3;
   std::vector<std::pair<std::uint64_t, Index>> table(cells);
   for (std::size_t c = 0; c < cells; ++c)
   {
-    table[c] = { (static_cast<std::uint64_t>(all[3 * c]) << 32) |
-        static_cast<std::uint64_t>(all[3 * c + 1]),
-      static_cast<Index>(all[3 * c + 2]) };
+    table[c] = { asmcore::FromDoubles(all.data() + 3 * c), static_cast<Index>(all[3 * c + 2]) };
   }
   std::sort(table.begin(), table.end());
   share.AllKeys.resize(cells);

@@ -82,6 +82,19 @@ struct VTKASMFILTERS_EXPORT GridSpec
   void Unpack(std::uint64_t key, std::int64_t ijk[3]) const;
 };
 
+/// A 64-bit value (a cell key: up to 2^63) as two doubles, its exact 32-bit
+/// halves, for collectives that move doubles (distributed runs).
+inline void AppendAsDoubles(std::vector<double>& out, std::uint64_t value)
+{
+  out.push_back(static_cast<double>(value >> 32));
+  out.push_back(static_cast<double>(value & 0xFFFFFFFFULL));
+}
+/// The value AppendAsDoubles wrote at `in`.
+inline std::uint64_t FromDoubles(const double* in)
+{
+  return (static_cast<std::uint64_t>(in[0]) << 32) | static_cast<std::uint64_t>(in[1]);
+}
+
 /// The points of a cloud grouped by grid cell.
 struct VTKASMFILTERS_EXPORT CellGrid
 {

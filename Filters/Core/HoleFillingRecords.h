@@ -46,15 +46,13 @@ struct SampleKey
 // Keys travel as doubles: a cell key as two exact 32-bit halves.
 inline void PutKey(std::vector<double>& out, const SampleKey& key)
 {
-  out.push_back(static_cast<double>(key.Cell >> 32));
-  out.push_back(static_cast<double>(key.Cell & 0xFFFFFFFFULL));
+  AppendAsDoubles(out, key.Cell);
   out.push_back(static_cast<double>(key.Rank));
 }
 
 inline SampleKey GetKey(const double* in)
 {
-  return { (static_cast<std::uint64_t>(in[0]) << 32) | static_cast<std::uint64_t>(in[1]),
-    static_cast<Index>(in[2]) };
+  return { FromDoubles(in), static_cast<Index>(in[2]) };
 }
 
 constexpr std::uint64_t NoCell = ~std::uint64_t(0);
