@@ -55,12 +55,14 @@ set(ASM_FILTERS_PRIVATE
 # Private sources declared in another private header (paths relative to
 # Filters/): vtkASMDistributed{Feature,Communication,Redistribute}.cxx implement
 # parts of vtkASMDistributed.h, Core/NeighborsBuild.cxx the build of
-# Core/Neighbors.h's tree.
+# Core/Neighbors.h's tree, Core/HoleFillingGreedy.cxx a step of
+# Core/HoleFillingSteps.h.
 set(ASM_FILTERS_EXTRA_SOURCES
   vtkASMDistributedFeature.cxx
   vtkASMDistributedCommunication.cxx
   vtkASMDistributedRedistribute.cxx
   Core/NeighborsBuild.cxx
+  Core/HoleFillingGreedy.cxx
 )
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
@@ -68,6 +70,7 @@ set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/GridOccupancy.h
   Core/GroupBy.h
   Core/HoleFillingRecords.h
+  Core/HoleFillingSteps.h
   Core/SpatialBuckets.h
   vtkASMFilterUtilities.h
 )
@@ -91,10 +94,6 @@ endforeach ()
 foreach (_asm_core IN LISTS ASM_FILTERS_CORE)
   list(APPEND _asm_sources "${_asm_filters_dir}/Core/${_asm_core}.cxx")
   list(APPEND _asm_private_headers "${_asm_filters_dir}/Core/${_asm_core}.h")
-endforeach ()
-foreach (_asm_private IN LISTS ASM_FILTERS_PRIVATE)
-  list(APPEND _asm_sources "${_asm_filters_dir}/${_asm_private}.cxx")
-  list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_private}.h")
 endforeach ()
 foreach (_asm_header IN LISTS ASM_FILTERS_EXTRA_PRIVATE_HEADERS)
   list(APPEND _asm_private_headers "${_asm_filters_dir}/${_asm_header}")

@@ -29,6 +29,14 @@ struct VTKASMFILTERS_EXPORT CellNeighborTable
   static constexpr Index MaxTableCells = std::numeric_limits<CellRef>::max();
   std::vector<CellRef> Cells;
   const CellRef* Of(Index c) const { return this->Cells.data() + 27 * c; }
+  /// The 27 entries of cell c as a range (`for (Index nb : table.RingOf(c))`).
+  struct Ring
+  {
+    const CellRef* First;
+    const CellRef* begin() const { return this->First; }
+    const CellRef* end() const { return this->First + 27; }
+  };
+  Ring RingOf(Index c) const { return { this->Of(c) }; }
 };
 
 /// The 27 entries of the table for cell c alone (as BuildCellNeighbors).

@@ -2,7 +2,7 @@
 /**
  * The records of the hole filling (HoleFilling.h) that travel between the
  * processes of a distributed run, and the regrouping of a run's samples
- * after the moves. Internal to HoleFilling.cxx.
+ * after the moves. Internal to the hole filling (HoleFillingSteps.h).
  */
 #ifndef asm_core_HoleFillingRecords_h
 #define asm_core_HoleFillingRecords_h
