@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// MPI runs: the grid partition into slabs, the global budgets and the
+// MPI runs: the grid partition into boxes of cells, the global budgets and the
 // preparation of a process's share (vtkASMDistributed.h); the communication
 // is in vtkASMDistributedCommunication.cxx, the redistribution of the points
 // in vtkASMDistributedRedistribute.cxx.
@@ -59,56 +59,11 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
 }
 
 //------------------------------------------------------------------------------
-std::int64_t SlabPartition::AxisIndex(const double p[3]) const
-{
-  // (GridSpec::CellOf along the one axis.)
-  const int a = this->Axis;
-  double t = std::floor((p[a] - this->Grid.Origin[a]) / this->Grid.CellSize);
-  t = std::min(std::max(t, 0.0), static_cast<double>(this->Grid.Dims[a] - 1));
-  return static_cast<std::int64_t>(t);
-}
-
-int SlabPartition::OwnerOf(std::int64_t axisIndex) const
-{
-  const std::int64_t dim = this->Grid.Dims[this->Axis];
-  axisIndex = std::min(std::max<std::int64_t>(axisIndex, 0), dim - 1);
-  const auto bins = static_cast<std::int64_t>(this->BinOwner.size());
-  return this->BinOwner[static_cast<std::size_t>(axisIndex * bins / dim)];
-}
-
-SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSpec& grid,
+asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
   const double* xyz, asmcore::IdView ids)
 {
-  SlabPartition slabs;
-  slabs.Grid = grid;
-  for (int a = 1; a < 3; ++a)
-  {
-    if (grid.Dims[a] > grid.Dims[slabs.Axis])
-    {
-      slabs.Axis = a;
-    }
-  }
-  const std::int64_t dim = grid.Dims[slabs.Axis];
-  const std::int64_t bins = std::min<std::int64_t>(dim, 1 << 16);
-  std::vector<long long> histogram(static_cast<std::size_t>(bins), 0);
-  slabs.BinOwner.assign(static_cast<std::size_t>(bins), 0);
-  for (Index id : ids)
-  {
-    ++histogram[static_cast<std::size_t>(slabs.AxisIndex(xyz + 3 * id) * bins / dim)];
-  }
-  comm.Sum(histogram);
-  const long long total = std::accumulate(histogram.begin(), histogram.end(), 0LL);
-  long long before = 0;
-  for (std::int64_t b = 0; b < bins && total > 0; ++b)
-  {
-    // The bin goes to the slab holding its middle point: contiguous slabs of
-    // about total / K points each.
-    const long double middle = before + 0.5L * histogram[b];
-    slabs.BinOwner[b] = static_cast<int>(
-      std::min<long double>(comm.Size() - 1, middle * comm.Size() / total));
-    before += histogram[b];
-  }
-  return slabs;
+  return asmcore::MakeCellPartition(
+    grid, comm.Size(), xyz, ids, [&comm](std::vector<long long>& counts) { comm.Sum(counts); });
 }
 
 //------------------------------------------------------------------------------
@@ -266,7 +221,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 
   // 2. Owners, redistribution with the halo, canonical order.
-  share.Partition = MakeSlabPartition(comm, share.Grid, xyz, ids);
+  share.Partition = MakeCellPartition(comm, share.Grid, xyz, ids);
   share.Cloud = Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters));
 
   // 3. The owned cells (consecutive runs of a key), and one global budget.

@@ -12,9 +12,13 @@
  *    (asmcore::AutomaticCellSize) with the number of DISTINCT non-empty cells
  *    over all processes (each process sends its cell keys to the process
  *    chosen by a hash of the key, which counts them once).
- * 2. One owner per cell. Cells are cut into K slabs along the grid's longest
- *    axis, balanced by point counts (a histogram of the axis index reduced
- *    over the processes). Every point is sent to the owner of its cell, and
+ * 2. One owner per cell. The grid is cut into K boxes of cells by recursive
+ *    bisection (asmcore::CellPartition): a box of k processes is cut across
+ *    its longest side where the points below make the share of k / 2 of
+ *    them (a histogram along that side, reduced over the processes; one
+ *    reduction per level of cuts). With K = 2 that is two slabs; with more,
+ *    a process's halo grows with its box's surface, not with the whole
+ *    cross-section of the cloud. Every point is sent to the owner of its cell, and
  *    to the processes owning a cell within HaloRingsFor(parameters) cells of
  *    it (halo points). Paper mode: HaloRings = 2 (neighbours only, no
  *    samples; used by the curvature estimates). Feature mode: see 7.
@@ -73,7 +77,8 @@
  *    final iterations, 2 otherwise), plus FeatureHaloMargin = 2 rings for
  *    the repair of empty clusters (FillEmptyClusters reads cluster sizes
  *    two rings away): 6 by default. Each exchange sends the samples of the
- *    cells within 6 rings of a slab boundary to the neighbour(s). The weighted steps' mean variation
+ *    cells within 6 rings of another process's box to that process. The
+ *    weighted steps' mean variation
  *    is of the whole cloud: each process sums its owned samples' in fixed
  *    point (asmcore::ExactMean), and the sums are added over the processes
  *    (SumOverProcesses), so that the mean does not depend on the partition.
@@ -114,6 +119,7 @@
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h
 
+#include "Core/CellPartition.h"
 #include "Core/Grid.h"
 #include "Core/Simplify.h"
 
@@ -202,20 +208,10 @@ private:
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
   asmcore::IdView ids, const asmcore::GridSpec& spec);
 
-/// Which process owns each grid cell: slabs of the axis index along the
-/// grid's longest axis, balanced by point counts.
-struct SlabPartition
-{
-  asmcore::GridSpec Grid;
-  int Axis = 0;
-  std::vector<int> BinOwner; ///< owner of each bin of consecutive axis indices
-
-  std::int64_t AxisIndex(const double p[3]) const;
-  int OwnerOf(std::int64_t axisIndex) const;
-};
-
-/// Collective: the slabs of `grid` for the points xyz[3*id], id in ids.
-SlabPartition MakeSlabPartition(const Communication& comm, const asmcore::GridSpec& grid,
+/// Collective: which process owns each cell of `grid` (boxes of cells from a
+/// recursive bisection balanced by the points xyz[3*id], id in ids, of every
+/// process; asmcore::MakeCellPartition).
+asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
   const double* xyz, asmcore::IdView ids);
 
 /// The points a process holds after redistribution, in canonical order.
@@ -239,7 +235,7 @@ struct LocalCloud
 /// point-data arrays of `input`) to the owner of its cell and, as a halo
 /// point, to the owners of the cells within `haloRings` cells.
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const SlabPartition& partition, int haloRings);
+  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings);
 
 /// Collective: the budgets N_c of this process's cells (`keys`, with
 /// `capacity` points and surface variation `variation`), apportioned over
@@ -259,7 +255,7 @@ struct SimplifyShare
   std::vector<Index> Budgets;           ///< their budgets (global apportionment)
   double Centroid[3] = { 0, 0, 0 };     ///< of the whole cloud
   double Diagonal = 0.0;                ///< of the whole cloud's bounding box
-  SlabPartition Partition;              ///< who owns which cells
+  asmcore::CellPartition Partition;     ///< who owns which cells
   /// Feature mode: every cell of every process, ascending, and its budget.
   std::vector<std::uint64_t> AllKeys;
   std::vector<Index> AllBudgets;
@@ -303,7 +299,7 @@ public:
   std::function<void(std::vector<long long>&)> SumHook();
   std::function<void(std::vector<double>&)> GatherHook();
   /// The core's ShareSamples hook: each process sends the samples of its
-  /// owned cells to the processes whose slab lies within `rings` cells
+  /// owned cells to the processes whose box lies within `rings` cells
   /// (their halo), and takes the ones it receives for its halo cells.
   std::function<void(const std::vector<std::uint64_t>&, const std::vector<Index>&,
     std::vector<double>&)>
@@ -326,7 +322,7 @@ private:
 };
 
 /// Collective: global bounds and cell size (parameters.CellSize, or the
-/// automatic one for parameters.NumberOfSamples and SamplesPerCell), slabs,
+/// automatic one for parameters.NumberOfSamples and SamplesPerCell), boxes,
 /// redistribution with a halo of HaloRingsFor(parameters) cells, and the
 /// global budgets (feature mode: also every cell's, ShareAllBudgets).
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,

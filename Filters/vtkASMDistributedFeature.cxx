@@ -104,10 +104,9 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
 {
   return [this, &share, rings](const std::vector<std::uint64_t>& keys, const std::vector<Index>& start,
            std::vector<double>& positions) {
-    // Owned cells to the processes whose halo holds them: slabs are
-    // contiguous along the axis, so those are the owners of the axis
-    // indices within `rings` (cell key halves, sample count, positions).
-    const SlabPartition& slabs = share.Partition;
+    // Owned cells to the processes whose halo holds them: the owners of
+    // the cells within `rings` (cell key halves, sample count, positions).
+    const asmcore::CellPartition& partition = share.Partition;
     std::vector<std::vector<double>> send(static_cast<std::size_t>(this->Comm.Size()));
     for (std::size_t c = 0; c < keys.size(); ++c)
     {
@@ -117,19 +116,17 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
       }
       std::int64_t ijk[3];
       share.Grid.Unpack(keys[c], ijk);
-      const std::int64_t i = ijk[slabs.Axis];
       const Index n = start[c + 1] - start[c];
-      for (int q = slabs.OwnerOf(i - rings); q <= slabs.OwnerOf(i + rings); ++q)
-      {
+      partition.ForEachOwnerNear(ijk, rings, [&](int q) {
         if (q == this->Comm.Rank())
         {
-          continue;
+          return;
         }
         std::vector<double>& out = send[static_cast<std::size_t>(q)];
         asmcore::AppendAsDoubles(out, keys[c]);
         out.push_back(static_cast<double>(n));
         out.insert(out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
-      }
+      });
     }
     this->Round(Exchange, {}); // (finished processes take part in the exchange too)
     const std::vector<double> received = this->Comm.Exchange(send);

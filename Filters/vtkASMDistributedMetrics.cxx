@@ -115,9 +115,9 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   result.CellSize = spec.CellSize;
 
   // The original points by cell owner, with the halo (coordinates only).
-  const SlabPartition slabs = MakeSlabPartition(comm, spec, xyz, ids);
+  const asmcore::CellPartition partition = MakeCellPartition(comm, spec, xyz, ids);
   vtkNew<vtkPolyData> bare;
-  const LocalCloud cloud = Redistribute(comm, bare, xyz, ids, slabs, HaloRings);
+  const LocalCloud cloud = Redistribute(comm, bare, xyz, ids, partition, HaloRings);
   std::vector<Index> owned;
   for (std::size_t i = 0; i < cloud.Owned.size(); ++i)
   {
@@ -168,7 +168,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   std::vector<Index> mineToMeasure;
   for (Index j : allIds)
   {
-    if (slabs.OwnerOf(slabs.AxisIndex(all.data() + 3 * j)) == comm.Rank())
+    if (partition.OwnerOfPoint(all.data() + 3 * j) == comm.Rank())
     {
       mineToMeasure.push_back(j);
     }

@@ -7,7 +7,7 @@
  *
  * The simplified cloud (small) is gathered on every process. The original
  * is redistributed by grid cell as in vtkASMSimplify (one grid covering
- * both clouds, sized from the original's distinct cells, slabs, a halo of
+ * both clouds, sized from the original's distinct cells, boxes of cells, a halo of
  * HaloRings cells), so each original key point is found once, by its cell's
  * owner, against all the simplified key points; nearest-neighbour and
  * point-to-plane distances of the original points use the whole simplified

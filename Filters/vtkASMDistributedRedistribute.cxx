@@ -132,7 +132,7 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
 } // namespace
 
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const SlabPartition& partition, int haloRings)
+  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings)
 {
   LocalCloud cloud;
   vtkPointData* inPD = input->GetPointData();
@@ -155,27 +155,14 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   {
     arrays.push_back(inPD->GetArray(s.Name.c_str()));
   }
-  // A point goes to the owners of the axis indices within haloRings of its
-  // own. Slabs are contiguous and numbered along the axis (BinOwner does not
-  // decrease), so those are the processes from the owner of the lowest index
-  // to the owner of the highest, less those without a slab.
+  // A point goes to the owners of the cells within haloRings of its own.
   const int processes = comm.Size();
-  std::vector<char> hasSlab(static_cast<std::size_t>(processes), 0);
-  for (int r : partition.BinOwner)
-  {
-    hasSlab[r] = 1;
-  }
   auto forEachDestination = [&](const double* p, auto&& visit) {
-    const std::int64_t axis = partition.AxisIndex(p);
-    const int first = partition.OwnerOf(axis - haloRings);
-    const int last = partition.OwnerOf(axis + haloRings);
-    for (int r = first; r <= last; ++r)
-    {
-      if (r == first || r == last || hasSlab[r])
-      {
-        visit(r);
-      }
-    }
+    std::uint64_t u[3];
+    partition.Grid.CellOf(p, u);
+    const std::int64_t ijk[3] = { static_cast<std::int64_t>(u[0]), static_cast<std::int64_t>(u[1]),
+      static_cast<std::int64_t>(u[2]) };
+    partition.ForEachOwnerNear(ijk, haloRings, visit);
   };
   // Each process's records are counted first, so that the buffers are
   // allocated once (zeroed: the padding bytes of the arrays' slots too).
@@ -331,7 +318,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     }
     std::int64_t ijk[3];
     partition.Grid.Unpack(grid.CellKey[c], ijk);
-    const char owned = partition.OwnerOf(ijk[partition.Axis]) == comm.Rank() ? 1 : 0;
+    const char owned = partition.OwnerOf(ijk) == comm.Rank() ? 1 : 0;
     for (std::size_t k = 0; k < items.size(); ++k)
     {
       const std::size_t i = static_cast<std::size_t>(first) + k;

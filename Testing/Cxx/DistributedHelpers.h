@@ -11,8 +11,11 @@
 
 #include <algorithm>
 #include <array>
+#include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <vector>
 
 namespace asmtest
@@ -73,6 +76,75 @@ std::vector<std::array<double, N>> SortedSamples(const asmcore::SimplifyResult& 
   }
   std::sort(s.begin(), s.end());
   return s;
+}
+// A collective among `parties` threads (MPI's, for slabs run at once): each
+// party's values wait for the others', and every party gets `combine` of
+// all of them (in party order).
+template <typename T>
+class ThreadCollective
+{
+public:
+  using Combine = std::function<std::vector<T>(const std::vector<std::vector<T>>&)>;
+  ThreadCollective(int parties, Combine combine)
+    : Parties(parties)
+    , Parts(static_cast<std::size_t>(parties))
+    , Join(std::move(combine))
+  {
+  }
+  void Meet(int party, std::vector<T>& values)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    const long long generation = this->Generation;
+    this->Parts[party] = values;
+    if (++this->Arrived == this->Parties)
+    {
+      this->Result = this->Join(this->Parts);
+      this->Arrived = 0;
+      ++this->Generation;
+      this->Done.notify_all();
+    }
+    else
+    {
+      this->Done.wait(lock, [&] { return this->Generation != generation; });
+    }
+    values = this->Result;
+    ++this->Calls;
+  }
+  int Calls = 0;
+
+private:
+  std::mutex Mutex;
+  std::condition_variable Done;
+  int Parties;
+  int Arrived = 0;
+  long long Generation = 0;
+  std::vector<std::vector<T>> Parts;
+  std::vector<T> Result;
+  Combine Join;
+};
+
+// The sums' all-reduce, the hole filling's all-gather.
+inline std::vector<long long> SumOf(const std::vector<std::vector<long long>>& parts)
+{
+  std::vector<long long> total(parts[0].size(), 0);
+  for (const auto& part : parts)
+  {
+    for (std::size_t k = 0; k < total.size(); ++k)
+    {
+      total[k] += part[k];
+    }
+  }
+  return total;
+}
+
+inline std::vector<double> Concatenated(const std::vector<std::vector<double>>& parts)
+{
+  std::vector<double> all;
+  for (const auto& part : parts)
+  {
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  return all;
 }
 } // namespace asmtest
 
