@@ -1,5 +1,5 @@
 """Compares the outputs of TestMPISimplify.py (and TestMPIPlugin.py) for
-K = 1, 2, 3 processes (files given as arguments), mode by mode (each file
+K = 1, 2, 3, 4 processes (files given as arguments), mode by mode (each file
 names its mode and N_s; the first file of a mode is the reference): exactly
 N_s points each, the same sorted points and array values, the same figures,
 up to a relative tolerance of 1e-9 (of the bounding-box diagonal for

@@ -1,7 +1,7 @@
 """MPI test, run under `mpiexec -n 3 pvbatch --mpi --symmetric`: a cloud of
 12 points (the bunny's first ones), all on process 0, simplified to N_s = 4
-in both modes. The grid has too few cell layers for three slabs, so some
-processes own no cell and receive no point: they must still take part in
+in both modes. The grid has too few non-empty cells for three processes'
+boxes, so some processes own no point and receive none: they must still take part in
 every collective of the run (the feature mode's final Lloyd iterations sum
 a mean over the processes, and its hole filling gathers rankings and removal
 costs as many times as its data asks: a process without points serves

@@ -6,12 +6,13 @@ vtkASMSimplify (started by mpiexec, so K = 1 takes the distributed path
 too, without AlwaysDistribute), then
 measured by vtkKeyPointError. Process 0 gathers the output and writes
 sorted coordinates, arrays and figures to the .npz file given as argument;
-CheckMPIOutputs.py compares the files of K = 1, 2, 3.
+CheckMPIOutputs.py compares the files of K = 1, 2, 3, 4 (with 3 and 4
+processes the grid is cut across two axes: boxes of cells, not slabs).
 
 Second argument: the mode, "paper" (N_s = 1800) or "feature" (the default
 FEATURE_PRESERVING mode, N_s = 8000 with FeatureSamplesPerCell 1, a grid of
-52 cells along the bunny, so that with two processes each one's halo of 21
-cell rings does not cover the whole bunny; every refinement at its default:
+52 cells along the bunny, so that each process's halo of 6 cell rings does
+not cover the whole bunny; every refinement at its default:
 FillHoles, whose rankings and removal costs a distributed run gathers over
 all processes, the final Lloyd iterations, whose weights it normalises over
 all processes, and BoundSnappedHoles, which it takes over all processes).
