@@ -14,7 +14,9 @@
  * Prints, per K and halo width (cell rings; 2: Paper mode, 6: the default
  * mode): the points held over all processes (owned + halo) per input point,
  * and the largest process's held points per N / K (its work and memory
- * relative to an even share without halo).
+ * relative to an even share without halo); then the time the boxes took to
+ * build (one thread; a distributed run builds them over N / K points per
+ * process).
  */
 #include "BenchmarkData.h"
 #include "Core/CellPartition.h"
@@ -22,6 +24,7 @@
 #include "Core/Grid.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -121,9 +124,12 @@ int main(int argc, char* argv[])
     static_cast<long long>(grid.Dims[1]), static_cast<long long>(grid.Dims[2]), fraction);
   std::printf("| K | halo rings | held / N, boxes | held / N, slabs | busiest x N/K, boxes | busiest x N/K, slabs |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|\n");
+  std::vector<double> buildSeconds; // (the boxes' build, one thread, all N points on one process)
   for (int k : processes)
   {
+    const auto start = std::chrono::steady_clock::now();
     const asmcore::CellPartition boxes = asmcore::MakeCellPartition(grid, k, xyz.data(), ids);
+    buildSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     const std::vector<int> slabOf = SlabOfIndex(grid, axis, xyz, k);
     for (int h : halos)
     {
@@ -157,6 +163,11 @@ int main(int argc, char* argv[])
       std::printf("| %d | %d | %.3f | %.3f | %.3f | %.3f |\n", k, h, total(inBox), total(inSlab), busiest(inBox),
         busiest(inSlab));
     }
+  }
+  std::printf("\nBuilding the boxes (one thread, all %lld points):", static_cast<long long>(n));
+  for (std::size_t j = 0; j < processes.size(); ++j)
+  {
+    std::printf(" K = %d %.3f s%s", processes[j], buildSeconds[j], j + 1 < processes.size() ? "," : "\n");
   }
   return 0;
 }
