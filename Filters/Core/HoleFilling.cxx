@@ -19,49 +19,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-// The spread of every sample, negated: minus the largest squared distance
-// of its members (-infinity for fixed samples and samples without members),
-// so that the smallest spreads are the largest values. A maximum does not
-// depend on the order of its terms: the points are cut in blocks that raise
-// shared per-sample maxima atomically.
-std::vector<double> NegatedSpreads(const Context& context)
-{
-  const SampleSet& samples = context.Samples;
-  const Index count = samples.Size();
-  const Index points = static_cast<Index>(context.Assign.size());
-  std::unique_ptr<std::atomic<double>[]> spread(new std::atomic<double>[static_cast<std::size_t>(count)]);
-  context.Exec.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      spread[s].store(-1.0, std::memory_order_relaxed);
-    }
-  });
-  context.Exec.Run(0, points, [&](Index b, Index e) {
-    for (Index i = b; i < e; ++i)
-    {
-      const Index s = context.Assign[i];
-      if (s < 0)
-      {
-        continue;
-      }
-      const double d = context.Distance2(i);
-      double current = spread[s].load(std::memory_order_relaxed);
-      while (d > current && !spread[s].compare_exchange_weak(current, d, std::memory_order_relaxed))
-      {
-      }
-    }
-  });
-  std::vector<double> negated(static_cast<std::size_t>(count));
-  context.Exec.Run(0, count, [&](Index b, Index e) {
-    for (Index s = b; s < e; ++s)
-    {
-      const double r = spread[s].load(std::memory_order_relaxed);
-      negated[s] = samples.Fixed[s] || r < 0.0 ? -Infinity : -r;
-    }
-  });
-  return negated;
-}
-
 // A gap at point slot i (read before any sample moves).
 Gap GapAt(const Context& context, Index i)
 {
@@ -74,17 +31,86 @@ Gap GapAt(const Context& context, Index i)
 }
 } // namespace
 
+// One pass over the points for both rankings: the spread of every sample
+// (negated: minus the largest squared distance of its members, -infinity
+// for fixed samples and samples without members, so that the smallest
+// spreads are the largest values) and the points farthest from their
+// sample (at most `farLook`, largest first; a distributed run ranks its own
+// cells' points only). The spreads are maxima raised atomically while
+// LargestFiniteOf evaluates every point's distance (at least once: a
+// maximum does not mind a second time, nor the order of its terms).
+PointRanking RankPoints(const Context& context, Index farLook)
+{
+  const SampleSet& samples = context.Samples;
+  const CellGrid& grid = context.Grid;
+  const Index count = samples.Size();
+  const Index points = static_cast<Index>(context.Assign.size());
+  std::unique_ptr<std::atomic<double>[]> spread(new std::atomic<double>[static_cast<std::size_t>(count)]);
+  context.Exec.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      spread[s].store(-1.0, std::memory_order_relaxed);
+    }
+  });
+  std::vector<char> rankedSlot; // (distributed: the points of this run's cells)
+  if (!context.Scope.Owned.empty())
+  {
+    rankedSlot.assign(static_cast<std::size_t>(points), 0);
+    context.Exec.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
+      for (Index c = b; c < e; ++c)
+      {
+        std::fill(rankedSlot.begin() + grid.CellStart[c], rankedSlot.begin() + grid.CellStart[c + 1],
+          static_cast<char>(context.Ranks(c) ? 1 : 0));
+      }
+    });
+  }
+  PointRanking ranking;
+  auto distanceOf = [&](Index i) {
+    const Index s = context.Assign[i];
+    if (s < 0)
+    {
+      return rankedSlot.empty() || rankedSlot[i] ? std::numeric_limits<double>::infinity() : -Infinity;
+    }
+    const double d = context.Distance2(i);
+    double current = spread[s].load(std::memory_order_relaxed);
+    while (d > current && !spread[s].compare_exchange_weak(current, d, std::memory_order_relaxed))
+    {
+    }
+    return rankedSlot.empty() || rankedSlot[i] ? d : -Infinity;
+  };
+  const Index look = std::min(points, farLook);
+  ranking.Farthest = LargestFiniteOf(points, distanceOf, look, context.Exec);
+  if (look <= 0)
+  {
+    // (Nothing to look for: LargestFiniteOf evaluated no point.)
+    context.Exec.Run(0, points, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        distanceOf(i);
+      }
+    });
+  }
+  ranking.NegatedSpread.resize(static_cast<std::size_t>(count));
+  context.Exec.Run(0, count, [&](Index b, Index e) {
+    for (Index s = b; s < e; ++s)
+    {
+      const double r = spread[s].load(std::memory_order_relaxed);
+      ranking.NegatedSpread[s] = samples.Fixed[s] || r < 0.0 ? -Infinity : -r;
+    }
+  });
+  return ranking;
+}
+
 // Candidates: the free samples with the most points per unit of spread
 // first (small clusters in dense areas), a few per move. The spread of a
 // sample is the largest squared distance of its members (infinite for fixed
 // samples and samples without members, which are never candidates).
-std::vector<Candidate> RankCandidates(const Context& context, Index look)
+std::vector<Candidate> RankCandidates(const Context& context, std::vector<double> negated, Index look)
 {
   const SampleSet& samples = context.Samples;
   const bool distributed = context.Distributed();
   std::vector<Candidate> candidates;
   {
-    std::vector<double> negated = NegatedSpreads(context);
     if (!context.Scope.Owned.empty())
     {
       context.Exec.Run(0, context.Grid.NumberOfCells(), [&](Index b, Index e) {
@@ -140,31 +166,10 @@ std::vector<Candidate> RankCandidates(const Context& context, Index look)
 // its own gap distance of a gap taken already, in its cell's ring, belongs
 // to that gap). A distributed run ranks its own cells' points, and the best
 // of every process's make the list.
-std::vector<Gap> FindGaps(const Context& context, Index maxMoves)
+std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& farthest, Index maxMoves)
 {
   const CellGrid& grid = context.Grid;
   const bool distributed = context.Distributed();
-  const Index points = static_cast<Index>(context.Assign.size());
-  const double farLook = 20.0 * static_cast<double>(std::min<Index>(maxMoves, Index(1) << 40));
-  std::vector<Index> farthest;
-  {
-    std::vector<char> rankedSlot; // (distributed: the points of this run's cells)
-    if (!context.Scope.Owned.empty())
-    {
-      rankedSlot.assign(static_cast<std::size_t>(points), 0);
-      context.Exec.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
-        for (Index c = b; c < e; ++c)
-        {
-          std::fill(rankedSlot.begin() + grid.CellStart[c], rankedSlot.begin() + grid.CellStart[c + 1],
-            static_cast<char>(context.Ranks(c) ? 1 : 0));
-        }
-      });
-    }
-    farthest = LargestFiniteOf(
-      points,
-      [&](Index i) { return rankedSlot.empty() || rankedSlot[i] ? context.Distance2(i) : -Infinity; },
-      static_cast<Index>(std::min<double>(static_cast<double>(points), farLook)), context.Exec);
-  }
   std::vector<Gap> far; // (distributed: every process's farthest points)
   if (distributed)
   {
@@ -185,7 +190,7 @@ std::vector<Gap> FindGaps(const Context& context, Index maxMoves)
       [](const Gap& a, const Gap& b) {
         return a.Distance2 > b.Distance2 || (a.Distance2 == b.Distance2 && a.Point < b.Point);
       },
-      static_cast<Index>(farLook));
+      FarLook(maxMoves));
   }
   std::vector<Gap> gaps;
   std::unordered_map<std::uint64_t, Index> head; // gaps per cell, chained
@@ -232,9 +237,10 @@ Index FillHoles(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& 
   }
   const holes::Context context{ xyz, grid, neighbors, assign, samples, execution, scope };
   // (Both rankings read the assignment's distances: before any sample moves.)
+  holes::PointRanking ranking = holes::RankPoints(context, holes::FarLook(maxMoves));
   const std::vector<holes::Candidate> candidates =
-    holes::RankCandidates(context, std::min<Index>(total, 8 * maxMoves));
-  const std::vector<holes::Gap> gaps = holes::FindGaps(context, maxMoves);
+    holes::RankCandidates(context, std::move(ranking.NegatedSpread), std::min<Index>(total, 8 * maxMoves));
+  const std::vector<holes::Gap> gaps = holes::FindGaps(context, ranking.Farthest, maxMoves);
   const std::vector<holes::Move> made = holes::MatchToGaps(context, candidates, gaps, firstBatch);
   if (made.empty())
   {

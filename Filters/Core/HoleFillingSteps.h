@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * The three steps of FillHoles (HoleFilling.h), internal to the hole
- * filling: the candidates (the most crowded free samples), the gaps (the
- * points farthest from every sample, one per gap) and the greedy matching of
- * the one to the other. HoleFilling.cxx holds the first two and FillHoles,
- * HoleFillingGreedy.cxx the matching.
+ * The steps of FillHoles (HoleFilling.h), internal to the hole filling: one
+ * pass over the points ranks them and the samples, then the candidates (the
+ * most crowded free samples), the gaps (the points farthest from every
+ * sample, one per gap) and the greedy matching of the one to the other.
+ * HoleFilling.cxx holds the rankings and FillHoles, HoleFillingGreedy.cxx
+ * the matching.
  */
 #ifndef asm_core_HoleFillingSteps_h
 #define asm_core_HoleFillingSteps_h
@@ -78,15 +79,35 @@ struct Context
   }
 };
 
-// The best `look` candidates of the whole cloud: free samples, the smallest
-// spread first (ties: the lower key). A distributed run ranks its own cells'
-// samples and the best of every process's make the list.
-std::vector<Candidate> RankCandidates(const Context& context, Index look);
+// How many of its points farthest from their sample each process ranks: 20
+// per move.
+inline Index FarLook(Index maxMoves)
+{
+  return static_cast<Index>(20.0 * static_cast<double>(std::min<Index>(maxMoves, Index(1) << 40)));
+}
 
-// At most `maxMoves` gaps of the whole cloud, largest first: among the
-// points farthest from their sample, those not within their own gap
-// distance of a larger gap.
-std::vector<Gap> FindGaps(const Context& context, Index maxMoves);
+// The two rankings of one pass over the points (RankPoints, before any
+// sample moves): every sample's spread, negated (minus the largest squared
+// distance of its members; -infinity for fixed samples and samples without
+// members), and this run's points farthest from their sample (at most
+// `farLook`, largest first; a distributed run ranks its own cells' points).
+struct PointRanking
+{
+  std::vector<double> NegatedSpread;
+  std::vector<Index> Farthest;
+};
+PointRanking RankPoints(const Context& context, Index farLook);
+
+// The best `look` candidates of the whole cloud: free samples, the smallest
+// spread first (ties: the lower key), from `negated` (PointRanking). A
+// distributed run ranks its own cells' samples and the best of every
+// process's make the list.
+std::vector<Candidate> RankCandidates(const Context& context, std::vector<double> negated, Index look);
+
+// At most `maxMoves` gaps of the whole cloud, largest first, from this
+// run's `farthest` points (PointRanking; a distributed run gathers every
+// process's): those not within their own gap distance of a larger gap.
+std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& farthest, Index maxMoves);
 
 // A move: the sample that moved, and the gap it filled (an index of gaps).
 using Move = std::pair<SampleKey, Index>;

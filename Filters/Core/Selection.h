@@ -46,7 +46,9 @@ inline Index BlockBegin(Index n, Index blocks, Index b)
 
 /// The indices of the `look` largest finite values among value(0), ...,
 /// value(n - 1) (as LargestFinite below), computed where they are needed
-/// instead of read from an array (each once or twice).
+/// instead of read from an array. When look > 0, value(i) is called for
+/// every i at least once and at most twice, from any thread (FillHoles
+/// raises its samples' spreads in the same calls).
 template <typename ValueOf>
 std::vector<Index> LargestFiniteOf(Index n, ValueOf&& value, Index look, const Execution& execution)
 {
