@@ -9,7 +9,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
-#include <unordered_map>
+#include <utility>
 
 namespace asmcore
 {
@@ -29,6 +29,41 @@ Gap GapAt(const Context& context, Index i)
   context.Xyz.Get(context.Grid.PointAt(i), g.Position);
   return g;
 }
+
+// The last gap taken in each cell, by cell key (the others chained behind
+// it): open addressing in one array, no allocation per entry.
+class GapHeads
+{
+public:
+  explicit GapHeads(std::size_t entries)
+  {
+    std::size_t size = 16;
+    while (size < 2 * entries + 2)
+    {
+      size *= 2;
+    }
+    this->Slots.assign(size, { NoCell, -1 });
+  }
+  Index Find(std::uint64_t key) const { return this->Slots[this->SlotOf(key)].second; }
+  void Set(std::uint64_t key, Index gap)
+  {
+    auto& slot = this->Slots[this->SlotOf(key)];
+    slot = { key, gap };
+  }
+
+private:
+  std::size_t SlotOf(std::uint64_t key) const
+  {
+    const std::size_t mask = this->Slots.size() - 1;
+    std::size_t at = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 20) & mask;
+    while (this->Slots[at].first != NoCell && this->Slots[at].first != key)
+    {
+      at = (at + 1) & mask;
+    }
+    return at;
+  }
+  std::vector<std::pair<std::uint64_t, Index>> Slots;
+};
 } // namespace
 
 // One pass over the points for both rankings: the spread of every sample
@@ -193,9 +228,12 @@ std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& fart
       FarLook(maxMoves));
   }
   std::vector<Gap> gaps;
-  std::unordered_map<std::uint64_t, Index> head; // gaps per cell, chained
   std::vector<Index> chain;
   const std::size_t farCount = distributed ? far.size() : farthest.size();
+  const std::size_t most = std::min(farCount, static_cast<std::size_t>(std::max<Index>(0, maxMoves)));
+  GapHeads head(most);
+  gaps.reserve(most); // (reserved: no chain of small blocks left behind in the heap)
+  chain.reserve(most);
   for (std::size_t j = 0; j < farCount && static_cast<Index>(gaps.size()) < maxMoves; ++j)
   {
     const Gap f = distributed ? far[j] : GapAt(context, farthest[j]);
@@ -204,17 +242,15 @@ std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& fart
     bool separate = true;
     for (int r = 0; r < 27 && separate; ++r)
     {
-      const auto it = ring[r] == NoCell ? head.end() : head.find(ring[r]);
-      for (Index g = it == head.end() ? -1 : it->second; g >= 0 && separate; g = chain[g])
+      for (Index g = ring[r] == NoCell ? -1 : head.Find(ring[r]); g >= 0 && separate; g = chain[g])
       {
         separate = SquaredDistance(f.Position, gaps[g].Position) > f.Distance2;
       }
     }
     if (separate)
     {
-      const auto it = head.find(f.Point.Cell);
-      chain.push_back(it == head.end() ? -1 : it->second);
-      head[f.Point.Cell] = static_cast<Index>(gaps.size());
+      chain.push_back(head.Find(f.Point.Cell));
+      head.Set(f.Point.Cell, static_cast<Index>(gaps.size()));
       gaps.push_back(f);
     }
   }

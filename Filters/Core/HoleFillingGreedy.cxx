@@ -34,7 +34,8 @@ public:
     , Count(static_cast<Index>(candidates.size()))
     , Cost(static_cast<std::size_t>(this->Count), Infinity)
     , RingBits(static_cast<std::size_t>(this->Count), 0)
-    , HeirsOf(static_cast<std::size_t>(this->Count))
+    , HeirStart(static_cast<std::size_t>(this->Count), 0)
+    , HeirCount(static_cast<std::size_t>(this->Count), 0)
     , BatchOf(static_cast<std::size_t>(this->Count), -1)
     , Blocked(static_cast<std::size_t>(this->Count), 0)
     , TouchedCell(context.Distributed() ? 0 : static_cast<std::size_t>(context.Grid.NumberOfCells()), -1)
@@ -50,6 +51,9 @@ private:
   std::uint32_t MemberCells(Index k) const;
   void ComputeCosts(const std::vector<Index>& which, double limit);
   void GatherCosts(const std::vector<Index>& which);
+  // Candidate k's heirs (candidate numbers), in Heirs.
+  const Index* HeirsBegin(Index k) const { return this->Heirs.data() + this->HeirStart[k]; }
+  const Index* HeirsEnd(Index k) const { return this->HeirsBegin(k) + this->HeirCount[k]; }
   bool IsCurrent(Index k) const;
   void MarkTouched(Index k);
 
@@ -62,7 +66,12 @@ private:
   std::vector<double> Cost;
   std::vector<std::uint32_t> RingBits; // the cells of the members, as bits of the ring
   // (Heirs and blocks only matter for candidates: by candidate number.)
-  std::vector<std::vector<Index>> HeirsOf;
+  // Every computation's heirs are appended to one array (a few per
+  // candidate, no small allocation each), HeirStart / HeirCount the last.
+  std::vector<Index> Heirs;
+  std::vector<Index> HeirStart;
+  std::vector<Index> HeirCount;
+  std::vector<std::vector<Index>> Scratch; // heirs per entry of `which`, reused
   std::vector<Index> BatchOf; // the moves made before its cost was computed
   std::vector<char> Blocked;
   // The last move out of each cell's ring: by cell here (serial), by cell
@@ -179,8 +188,11 @@ std::uint32_t GapMatching::MemberCells(Index k) const
 // this run ranks; then, distributed, every process's.
 void GapMatching::ComputeCosts(const std::vector<Index>& which, double limit)
 {
+  if (this->Scratch.size() < which.size())
+  {
+    this->Scratch.resize(which.size());
+  }
   auto range = [&](Index b, Index e) {
-    thread_local std::vector<Index> heirs;
     for (Index j = b; j < e; ++j)
     {
       const Index k = which[j];
@@ -188,16 +200,8 @@ void GapMatching::ComputeCosts(const std::vector<Index>& which, double limit)
       {
         continue;
       }
-      this->Cost[k] = this->RemovalCost(k, limit, heirs);
+      this->Cost[k] = this->RemovalCost(k, limit, this->Scratch[j]);
       this->RingBits[k] = this->MemberCells(k);
-      this->HeirsOf[k].clear();
-      for (Index t : heirs)
-      {
-        if (this->CandidateOf[t] >= 0)
-        {
-          this->HeirsOf[k].push_back(this->CandidateOf[t]);
-        }
-      }
     }
   };
   // (A candidate at its turn alone: no parallel loop to start.)
@@ -210,9 +214,23 @@ void GapMatching::ComputeCosts(const std::vector<Index>& which, double limit)
   {
     this->Ctx.Exec.Run(0, n, range);
   }
-  for (Index k : which)
+  for (std::size_t j = 0; j < which.size(); ++j)
   {
+    const Index k = which[j];
     this->BatchOf[k] = this->Moves;
+    if (this->Candidates[k].Local < 0)
+    {
+      continue;
+    }
+    this->HeirStart[k] = static_cast<Index>(this->Heirs.size());
+    for (Index t : this->Scratch[j])
+    {
+      if (this->CandidateOf[t] >= 0)
+      {
+        this->Heirs.push_back(this->CandidateOf[t]);
+      }
+    }
+    this->HeirCount[k] = static_cast<Index>(this->Heirs.size()) - this->HeirStart[k];
   }
   if (this->Ctx.Distributed())
   {
@@ -231,10 +249,10 @@ void GapMatching::GatherCosts(const std::vector<Index>& which)
     {
       values.insert(values.end(), { static_cast<double>(k), this->Cost[k],
                                     static_cast<double>(this->RingBits[k]),
-                                    static_cast<double>(this->HeirsOf[k].size()) });
-      for (Index h : this->HeirsOf[k])
+                                    static_cast<double>(this->HeirCount[k]) });
+      for (const Index* h = this->HeirsBegin(k); h != this->HeirsEnd(k); ++h)
       {
-        values.push_back(static_cast<double>(h));
+        values.push_back(static_cast<double>(*h));
       }
     }
   }
@@ -244,12 +262,13 @@ void GapMatching::GatherCosts(const std::vector<Index>& which)
     const auto k = static_cast<Index>(values[at]);
     this->Cost[k] = values[at + 1];
     this->RingBits[k] = static_cast<std::uint32_t>(values[at + 2]);
-    const auto heirs = static_cast<std::size_t>(values[at + 3]);
+    const auto heirs = static_cast<Index>(values[at + 3]);
     at += 4;
-    this->HeirsOf[k].resize(heirs);
-    for (std::size_t h = 0; h < heirs; ++h, ++at)
+    this->HeirStart[k] = static_cast<Index>(this->Heirs.size());
+    this->HeirCount[k] = heirs;
+    for (Index h = 0; h < heirs; ++h, ++at)
     {
-      this->HeirsOf[k][h] = static_cast<Index>(values[at]);
+      this->Heirs.push_back(static_cast<Index>(values[at]));
     }
   }
 }
@@ -326,7 +345,9 @@ std::vector<Move> GapMatching::Run(const std::vector<Gap>& gaps, Index firstBatc
   Index batch = std::max<Index>(1, firstBatch); // doubles up to 1024 (1: stays)
   Index next = 0;
   std::vector<Move> made;
+  made.reserve(gaps.size());
   std::vector<Index> which;
+  which.reserve(1024);
   for (std::size_t gap = 0; gap < gaps.size(); ++gap)
   {
     const double limit = gaps[gap].Distance2;
@@ -375,9 +396,9 @@ std::vector<Move> GapMatching::Run(const std::vector<Gap>& gaps, Index firstBatc
         continue;
       }
       this->Blocked[k] = 1;
-      for (Index t : this->HeirsOf[k])
+      for (const Index* t = this->HeirsBegin(k); t != this->HeirsEnd(k); ++t)
       {
-        this->Blocked[t] = 1;
+        this->Blocked[*t] = 1;
       }
       const Index s = this->Candidates[k].Held;
       if (s >= 0)

@@ -207,6 +207,7 @@ void Regroup(const CellGrid& grid, const std::vector<std::pair<SampleKey, Index>
   };
   std::vector<char> left(static_cast<std::size_t>(count), 0);
   std::vector<Arrival> arriving;
+  arriving.reserve(made.size());
   std::vector<Index> start(static_cast<std::size_t>(cells) + 1, 0);
   for (Index c = 0; c < cells; ++c)
   {
