@@ -30,40 +30,6 @@ Gap GapAt(const Context& context, Index i)
   return g;
 }
 
-// The last gap taken in each cell, by cell key (the others chained behind
-// it): open addressing in one array, no allocation per entry.
-class GapHeads
-{
-public:
-  explicit GapHeads(std::size_t entries)
-  {
-    std::size_t size = 16;
-    while (size < 2 * entries + 2)
-    {
-      size *= 2;
-    }
-    this->Slots.assign(size, { NoCell, -1 });
-  }
-  Index Find(std::uint64_t key) const { return this->Slots[this->SlotOf(key)].second; }
-  void Set(std::uint64_t key, Index gap)
-  {
-    auto& slot = this->Slots[this->SlotOf(key)];
-    slot = { key, gap };
-  }
-
-private:
-  std::size_t SlotOf(std::uint64_t key) const
-  {
-    const std::size_t mask = this->Slots.size() - 1;
-    std::size_t at = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 20) & mask;
-    while (this->Slots[at].first != NoCell && this->Slots[at].first != key)
-    {
-      at = (at + 1) & mask;
-    }
-    return at;
-  }
-  std::vector<std::pair<std::uint64_t, Index>> Slots;
-};
 } // namespace
 
 // One pass over the points for both rankings: the spread of every sample
@@ -231,7 +197,7 @@ std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& fart
   std::vector<Index> chain;
   const std::size_t farCount = distributed ? far.size() : farthest.size();
   const std::size_t most = std::min(farCount, static_cast<std::size_t>(std::max<Index>(0, maxMoves)));
-  GapHeads head(most);
+  KeyTable head(most); // the last gap taken in each cell (the others chained behind it)
   gaps.reserve(most); // (reserved: no chain of small blocks left behind in the heap)
   chain.reserve(most);
   for (std::size_t j = 0; j < farCount && static_cast<Index>(gaps.size()) < maxMoves; ++j)

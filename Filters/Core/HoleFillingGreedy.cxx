@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <unordered_map>
 
 namespace asmcore
 {
@@ -77,7 +76,7 @@ private:
   // The last move out of each cell's ring: by cell here (serial), by cell
   // key for cells held anywhere (distributed).
   std::vector<Index> TouchedCell;
-  std::unordered_map<std::uint64_t, Index> TouchedKey;
+  KeyTable TouchedKey;
   Index Moves = 0;
 };
 
@@ -296,8 +295,8 @@ bool GapMatching::IsCurrent(Index k) const
   {
     if (this->RingBits[k] & (std::uint32_t(1) << r))
     {
-      const auto it = ring[r] == NoCell ? this->TouchedKey.end() : this->TouchedKey.find(ring[r]);
-      if (it != this->TouchedKey.end() && it->second >= this->BatchOf[k])
+      const Index touched = ring[r] == NoCell ? -1 : this->TouchedKey.Find(ring[r]);
+      if (touched >= 0 && touched >= this->BatchOf[k])
       {
         return false;
       }
@@ -317,7 +316,7 @@ void GapMatching::MarkTouched(Index k)
     {
       if (key != NoCell)
       {
-        this->TouchedKey[key] = this->Moves;
+        this->TouchedKey.Set(key, this->Moves);
       }
     }
     return;

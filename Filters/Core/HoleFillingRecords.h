@@ -84,6 +84,61 @@ inline void RingKeys(const GridSpec& spec, std::uint64_t key, std::uint64_t out[
   }
 }
 
+// A map from cell keys to indices (-1: absent), in one open-addressing
+// array that doubles when half full: no heap block per entry (tens of
+// thousands of those a round fragmented the heap).
+class KeyTable
+{
+public:
+  explicit KeyTable(std::size_t expected = 0) { this->Slots.assign(SizeFor(expected), { NoCell, -1 }); }
+  Index Find(std::uint64_t key) const { return this->Slots[this->SlotOf(key)].second; }
+  void Set(std::uint64_t key, Index value)
+  {
+    auto* slot = &this->Slots[this->SlotOf(key)];
+    if (slot->first == NoCell)
+    {
+      if (2 * (this->Used + 1) > this->Slots.size())
+      {
+        std::vector<std::pair<std::uint64_t, Index>> old(SizeFor(this->Used + 1), { NoCell, -1 });
+        old.swap(this->Slots);
+        for (const auto& entry : old)
+        {
+          if (entry.first != NoCell)
+          {
+            this->Slots[this->SlotOf(entry.first)] = entry;
+          }
+        }
+        slot = &this->Slots[this->SlotOf(key)];
+      }
+      ++this->Used;
+    }
+    *slot = { key, value };
+  }
+
+private:
+  static std::size_t SizeFor(std::size_t entries)
+  {
+    std::size_t size = 16;
+    while (size < 2 * entries + 2)
+    {
+      size *= 2;
+    }
+    return size;
+  }
+  std::size_t SlotOf(std::uint64_t key) const
+  {
+    const std::size_t mask = this->Slots.size() - 1;
+    std::size_t at = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 20) & mask;
+    while (this->Slots[at].first != NoCell && this->Slots[at].first != key)
+    {
+      at = (at + 1) & mask;
+    }
+    return at;
+  }
+  std::vector<std::pair<std::uint64_t, Index>> Slots;
+  std::size_t Used = 0;
+};
+
 // A free sample that may move: ranked by its negated spread.
 struct Candidate
 {

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 
 using asmcore::Index;
@@ -151,6 +152,30 @@ TEST(HoleFilling, RankThresholdKeepsTheBestAndLittleElse)
         EXPECT_EQ(t, -std::numeric_limits<double>::infinity());
       }
     }
+  }
+}
+
+// The hole filling's map from cell keys to indices (gap heads, touched
+// cells) against std::map, through several doublings, with overwrites and
+// keys that collide in the low bits.
+TEST(HoleFilling, KeyTableIsAMap)
+{
+  asmcore::holes::KeyTable table(4);
+  std::map<std::uint64_t, asmcore::Index> reference;
+  std::mt19937_64 rng(9);
+  for (int k = 0; k < 20000; ++k)
+  {
+    const std::uint64_t key = (rng() % 5000) << (k % 3 == 0 ? 42 : 0);
+    const auto value = static_cast<asmcore::Index>(k);
+    table.Set(key, value);
+    reference[key] = value;
+    const std::uint64_t probe = rng() % 6000;
+    const auto it = reference.find(probe);
+    ASSERT_EQ(table.Find(probe), it == reference.end() ? -1 : it->second) << probe;
+  }
+  for (const auto& entry : reference)
+  {
+    EXPECT_EQ(table.Find(entry.first), entry.second);
   }
 }
 
