@@ -158,10 +158,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   // A point goes to the owners of the cells within haloRings of its own.
   const int processes = comm.Size();
   auto forEachDestination = [&](const double* p, auto&& visit) {
-    std::uint64_t u[3];
-    partition.Grid.CellOf(p, u);
-    const std::int64_t ijk[3] = { static_cast<std::int64_t>(u[0]), static_cast<std::int64_t>(u[1]),
-      static_cast<std::int64_t>(u[2]) };
+    std::int64_t ijk[3];
+    partition.CellOfPoint(p, ijk);
     partition.ForEachOwnerNear(ijk, haloRings, visit);
   };
   // Each process's records are counted first, so that the buffers are

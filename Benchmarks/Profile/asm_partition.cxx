@@ -137,10 +137,8 @@ int main(int argc, char* argv[])
       std::vector<long long> inSlab(static_cast<std::size_t>(k), 0);
       for (asmcore::Index i = 0; i < n; ++i)
       {
-        std::uint64_t u[3];
-        grid.CellOf(xyz.data() + 3 * i, u);
-        const std::int64_t ijk[3] = { static_cast<std::int64_t>(u[0]), static_cast<std::int64_t>(u[1]),
-          static_cast<std::int64_t>(u[2]) };
+        std::int64_t ijk[3];
+        boxes.CellOfPoint(xyz.data() + 3 * i, ijk);
         boxes.ForEachOwnerNear(ijk, h, [&](int q) { ++inBox[static_cast<std::size_t>(q)]; });
         const int first = slabOf[static_cast<std::size_t>(std::max<std::int64_t>(0, ijk[axis] - h))];
         const int last = slabOf[static_cast<std::size_t>(std::min(grid.Dims[axis] - 1, ijk[axis] + h))];

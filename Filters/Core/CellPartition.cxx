@@ -114,10 +114,8 @@ CellPartition MakeCellPartition(const GridSpec& grid, int processes, Coordinates
     {
       double p[3];
       xyz.Get(id, p);
-      std::uint64_t u[3];
-      grid.CellOf(p, u);
-      const std::int64_t ijk[3] = { static_cast<std::int64_t>(u[0]), static_cast<std::int64_t>(u[1]),
-        static_cast<std::int64_t>(u[2]) };
+      std::int64_t ijk[3];
+      partition.CellOfPoint(p, ijk);
       int node = 0;
       while (partition.Nodes[node].Axis >= 0)
       {

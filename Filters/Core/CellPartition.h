@@ -46,13 +46,21 @@ struct VTKASMFILTERS_EXPORT CellPartition
     }
     return n->Rank;
   }
-  /// The owner of the cell holding p (clamped to the grid).
-  int OwnerOfPoint(const double p[3]) const
+  /// The cell holding p (GridSpec::CellOf, as signed indices).
+  void CellOfPoint(const double p[3], std::int64_t ijk[3]) const
   {
     std::uint64_t u[3];
     this->Grid.CellOf(p, u);
-    const std::int64_t ijk[3] = { static_cast<std::int64_t>(u[0]), static_cast<std::int64_t>(u[1]),
-      static_cast<std::int64_t>(u[2]) };
+    for (int a = 0; a < 3; ++a)
+    {
+      ijk[a] = static_cast<std::int64_t>(u[a]);
+    }
+  }
+  /// The owner of the cell holding p (clamped to the grid).
+  int OwnerOfPoint(const double p[3]) const
+  {
+    std::int64_t ijk[3];
+    this->CellOfPoint(p, ijk);
     return this->OwnerOf(ijk);
   }
   /// Calls visit(rank) once for each process whose box has a cell within
