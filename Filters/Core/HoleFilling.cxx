@@ -29,7 +29,6 @@ Gap GapAt(const Context& context, Index i)
   context.Xyz.Get(context.Grid.PointAt(i), g.Position);
   return g;
 }
-
 } // namespace
 
 // One pass over the points for both rankings: the spread of every sample
