@@ -60,10 +60,10 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
 
 //------------------------------------------------------------------------------
 asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
-  const double* xyz, asmcore::IdView ids)
+  const double* xyz, asmcore::IdView ids, const asmcore::Execution& execution)
 {
   return asmcore::MakeCellPartition(
-    grid, comm.Size(), xyz, ids, [&comm](std::vector<long long>& counts) { comm.Sum(counts); });
+    grid, comm.Size(), xyz, ids, [&comm](std::vector<long long>& counts) { comm.Sum(counts); }, execution);
 }
 
 //------------------------------------------------------------------------------
@@ -172,7 +172,7 @@ Index SimplifyShare::BudgetOf(std::uint64_t key) const
 }
 
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters)
+  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters, const asmcore::Execution& execution)
 {
   SimplifyShare share;
   const Index total = comm.Sum(static_cast<Index>(ids.size()));
@@ -221,8 +221,8 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 
   // 2. Owners, redistribution with the halo, canonical order.
-  share.Partition = MakeCellPartition(comm, share.Grid, xyz, ids);
-  share.Cloud = Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters));
+  share.Partition = MakeCellPartition(comm, share.Grid, xyz, ids, execution);
+  share.Cloud = Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters), execution);
 
   // 3. The owned cells (consecutive runs of a key), and one global budget.
   const LocalCloud& cloud = share.Cloud;

@@ -212,7 +212,7 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
 /// recursive bisection balanced by the points xyz[3*id], id in ids, of every
 /// process; asmcore::MakeCellPartition).
 asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
-  const double* xyz, asmcore::IdView ids);
+  const double* xyz, asmcore::IdView ids, const asmcore::Execution& execution = {});
 
 /// The points a process holds after redistribution, in canonical order.
 struct LocalCloud
@@ -235,7 +235,8 @@ struct LocalCloud
 /// point-data arrays of `input`) to the owner of its cell and, as a halo
 /// point, to the owners of the cells within `haloRings` cells.
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings);
+  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings,
+  const asmcore::Execution& execution = {});
 
 /// Collective: the budgets N_c of this process's cells (`keys`, with
 /// `capacity` points and surface variation `variation`), apportioned over
@@ -326,7 +327,8 @@ private:
 /// redistribution with a halo of HaloRingsFor(parameters) cells, and the
 /// global budgets (feature mode: also every cell's, ShareAllBudgets).
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters);
+  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters,
+  const asmcore::Execution& execution = {});
 
 /// Drops from `ids` the points flagged as duplicates of another process's
 /// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which

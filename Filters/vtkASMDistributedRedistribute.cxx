@@ -132,7 +132,8 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
 } // namespace
 
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings)
+  asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings,
+  const asmcore::Execution& execution)
 {
   LocalCloud cloud;
   vtkPointData* inPD = input->GetPointData();
@@ -164,60 +165,100 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   };
   // Each process's records are counted first, so that the buffers are
   // allocated once (zeroed: the padding bytes of the arrays' slots too).
-  std::vector<std::size_t> records(static_cast<std::size_t>(processes), 0);
-  for (Index id : ids)
-  {
-    forEachDestination(xyz + 3 * id, [&](int r) { ++records[r]; });
-  }
-  std::vector<std::vector<double>> send(static_cast<std::size_t>(processes));
-  for (int r = 0; r < processes; ++r)
-  {
-    send[r].resize(records[r] * static_cast<std::size_t>(width));
-    records[r] = 0; // (from here on: the records written)
-  }
-  std::vector<double> tuple;
-  for (Index id : ids)
-  {
-    const double* p = xyz + 3 * id;
-    double* record = nullptr; // (written once, at the first destination, then copied)
-    forEachDestination(p, [&](int r) {
-      double* to = send[r].data() + records[r]++ * static_cast<std::size_t>(width);
-      if (record)
+  // Fixed blocks of the ids, each counting and then writing its own part
+  // of every buffer: the buffers are the same whatever the thread count
+  // (each destination's records in id order).
+  const auto count = static_cast<Index>(ids.size());
+  const Index blocks = std::max<Index>(1, std::min<Index>(64, count / 65536));
+  auto blockBegin = [&](Index b) { return count / blocks * b + (count % blocks) * b / blocks; };
+  const auto k = static_cast<std::size_t>(processes);
+  std::vector<std::size_t> at(static_cast<std::size_t>(blocks) * k, 0); // per (block, process)
+  execution.Run(0, blocks, [&](Index first, Index last) {
+    for (Index b = first; b < last; ++b)
+    {
+      std::size_t* records = at.data() + static_cast<std::size_t>(b) * k;
+      for (Index j = blockBegin(b); j < blockBegin(b + 1); ++j)
       {
-        std::copy(record, record + width, to);
-        return;
+        forEachDestination(xyz + 3 * ids[j], [&](int r) { ++records[r]; });
       }
-      record = to;
-      for (int a = 0; a < 3; ++a)
+    }
+  });
+  std::vector<std::vector<double>> send(k);
+  for (std::size_t r = 0; r < k; ++r)
+  {
+    std::size_t total = 0; // (from here on at[b][r]: where block b writes for r)
+    for (Index b = 0; b < blocks; ++b)
+    {
+      const std::size_t n = at[static_cast<std::size_t>(b) * k + r];
+      at[static_cast<std::size_t>(b) * k + r] = total;
+      total += n;
+    }
+    send[r].resize(total * static_cast<std::size_t>(width));
+  }
+  // Non-standard memory layouts are read through GetTuple, on one thread.
+  bool standard = true;
+  for (vtkDataArray* array : arrays)
+  {
+    standard = standard && array->HasStandardMemoryLayout();
+  }
+  auto fill = [&](Index first, Index last) {
+    std::vector<double> tuple;
+    for (Index b = first; b < last; ++b)
+    {
+      std::size_t* records = at.data() + static_cast<std::size_t>(b) * k;
+      for (Index j = blockBegin(b); j < blockBegin(b + 1); ++j)
       {
-        record[a] = p[a];
-      }
-      for (std::size_t k = 0; k < slots.size(); ++k)
-      {
-        const ArraySlot& s = slots[k];
-        auto* bytes = reinterpret_cast<unsigned char*>(record + s.Offset);
-        const int size = vtkDataArray::GetDataTypeSize(s.Type);
-        if (arrays[k]->HasStandardMemoryLayout())
-        {
-          // The values' bytes, exactly.
-          std::memcpy(bytes, arrays[k]->GetVoidPointer(id * s.Components),
-            static_cast<std::size_t>(size) * static_cast<std::size_t>(s.Components));
-          continue;
-        }
-        tuple.resize(static_cast<std::size_t>(s.Components));
-        arrays[k]->GetTuple(id, tuple.data());
-        for (int c = 0; c < s.Components; ++c)
-        {
-          switch (s.Type)
+        const Index id = ids[j];
+        const double* p = xyz + 3 * id;
+        double* record = nullptr; // (written once, at the first destination, then copied)
+        forEachDestination(p, [&](int r) {
+          double* to = send[r].data() + records[r]++ * static_cast<std::size_t>(width);
+          if (record)
           {
-            vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
-                             std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
+            std::copy(record, record + width, to);
+            return;
           }
-        }
+          record = to;
+          for (int a = 0; a < 3; ++a)
+          {
+            record[a] = p[a];
+          }
+          for (std::size_t a = 0; a < slots.size(); ++a)
+          {
+            const ArraySlot& s = slots[a];
+            auto* bytes = reinterpret_cast<unsigned char*>(record + s.Offset);
+            const int size = vtkDataArray::GetDataTypeSize(s.Type);
+            if (arrays[a]->HasStandardMemoryLayout())
+            {
+              // The values' bytes, exactly.
+              std::memcpy(bytes, arrays[a]->GetVoidPointer(id * s.Components),
+                static_cast<std::size_t>(size) * static_cast<std::size_t>(s.Components));
+              continue;
+            }
+            tuple.resize(static_cast<std::size_t>(s.Components));
+            arrays[a]->GetTuple(id, tuple.data());
+            for (int c = 0; c < s.Components; ++c)
+            {
+              switch (s.Type)
+              {
+                vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
+                                 std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
+              }
+            }
+          }
+          record[payloadEnd] = comm.Rank();
+          record[payloadEnd + 1] = static_cast<double>(id);
+        });
       }
-      record[payloadEnd] = comm.Rank();
-      record[payloadEnd + 1] = static_cast<double>(id);
-    });
+    }
+  };
+  if (standard)
+  {
+    execution.Run(0, blocks, fill);
+  }
+  else
+  {
+    fill(0, blocks);
   }
   const std::vector<double> received = comm.Exchange(send);
 
@@ -228,15 +269,17 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   // and copied out while they are in the cache.
   const std::size_t n = received.size() / static_cast<std::size_t>(width);
   cloud.Xyz.resize(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    for (int a = 0; a < 3; ++a) // (not std::copy: a call to memmove per point)
+  execution.Run(0, static_cast<Index>(n), [&](Index first, Index last) {
+    for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
     {
-      cloud.Xyz[3 * i + a] = received[i * width + a];
+      for (int a = 0; a < 3; ++a) // (not std::copy: a call to memmove per point)
+      {
+        cloud.Xyz[3 * i + a] = received[i * width + a];
+      }
     }
-  }
+  });
   const asmcore::CellGrid grid = asmcore::BuildCellGrid(
-    cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid);
+    cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid, execution);
   // (From here on cloud.Xyz is rewritten in canonical order.)
   cloud.CellStart.assign(grid.CellStart.begin(), grid.CellStart.end());
   cloud.CellKeys = grid.CellKey;
@@ -286,58 +329,61 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   };
   constexpr Index Ahead = 16;
   const auto last = static_cast<Index>(n);
-  std::vector<Item> items;
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    const Index first = grid.CellStart[c];
-    items.clear();
-    for (Index i = first; i < grid.CellStart[c + 1]; ++i)
+  // (Cells in parallel: each writes its own points' slots.)
+  execution.Run(0, grid.NumberOfCells(), [&](Index firstCell, Index lastCell) {
+    std::vector<Item> items;
+    for (Index c = firstCell; c < lastCell; ++c)
     {
-      if (i + Ahead < last)
+      const Index first = grid.CellStart[c];
+      items.clear();
+      for (Index i = first; i < grid.CellStart[c + 1]; ++i)
       {
-        asmcore::Prefetch(received.data() + grid.Order[i + Ahead] * width);
+        if (i + Ahead < last)
+        {
+          asmcore::Prefetch(received.data() + grid.Order[i + Ahead] * width);
+        }
+        const double* r = received.data() + grid.Order[i] * width;
+        items.push_back({ orderedBits(r[0]), r });
       }
-      const double* r = received.data() + grid.Order[i] * width;
-      items.push_back({ orderedBits(r[0]), r });
+      std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.X < b.X; });
+      for (auto run = items.begin(); run != items.end();)
+      {
+        auto end = run + 1;
+        while (end != items.end() && end->X == run->X)
+        {
+          ++end;
+        }
+        if (end - run > 1)
+        {
+          std::sort(run, end, before);
+        }
+        run = end;
+      }
+      std::int64_t ijk[3];
+      partition.Grid.Unpack(grid.CellKey[c], ijk);
+      const char owned = partition.OwnerOf(ijk) == comm.Rank() ? 1 : 0;
+      for (std::size_t k = 0; k < items.size(); ++k)
+      {
+        const std::size_t i = static_cast<std::size_t>(first) + k;
+        const double* r = items[k].Record;
+        for (int a = 0; a < 3; ++a)
+        {
+          cloud.Xyz[3 * i + a] = r[a];
+        }
+        cloud.Owned[i] = owned;
+        cloud.SourceRank[i] = static_cast<int>(r[payloadEnd]);
+        cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
+        for (std::size_t a = 0; a < slots.size(); ++a)
+        {
+          const ArraySlot& s = slots[a];
+          const std::size_t bytes = static_cast<std::size_t>(s.Components) *
+            static_cast<std::size_t>(vtkDataArray::GetDataTypeSize(s.Type));
+          std::memcpy(outArrays[a]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
+            r + s.Offset, bytes);
+        }
+      }
     }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.X < b.X; });
-    for (auto run = items.begin(); run != items.end();)
-    {
-      auto end = run + 1;
-      while (end != items.end() && end->X == run->X)
-      {
-        ++end;
-      }
-      if (end - run > 1)
-      {
-        std::sort(run, end, before);
-      }
-      run = end;
-    }
-    std::int64_t ijk[3];
-    partition.Grid.Unpack(grid.CellKey[c], ijk);
-    const char owned = partition.OwnerOf(ijk) == comm.Rank() ? 1 : 0;
-    for (std::size_t k = 0; k < items.size(); ++k)
-    {
-      const std::size_t i = static_cast<std::size_t>(first) + k;
-      const double* r = items[k].Record;
-      for (int a = 0; a < 3; ++a)
-      {
-        cloud.Xyz[3 * i + a] = r[a];
-      }
-      cloud.Owned[i] = owned;
-      cloud.SourceRank[i] = static_cast<int>(r[payloadEnd]);
-      cloud.SourceId[i] = static_cast<long long>(r[payloadEnd + 1]);
-      for (std::size_t a = 0; a < slots.size(); ++a)
-      {
-        const ArraySlot& s = slots[a];
-        const std::size_t bytes = static_cast<std::size_t>(s.Components) *
-          static_cast<std::size_t>(vtkDataArray::GetDataTypeSize(s.Type));
-        std::memcpy(outArrays[a]->GetVoidPointer(static_cast<vtkIdType>(i) * s.Components),
-          r + s.Offset, bytes);
-      }
-    }
-  }
+  });
   return cloud;
 }
 

@@ -214,7 +214,9 @@ int vtkASMSimplify::RequestData(
     // (The grid, the redistribution and the budgets: progress only; an
     // abort waits for the core, whose processes agree on it.)
     this->UpdateProgress(0.0);
-    share = asmvtk::PrepareSimplify(comm, input, xyz.Doubles, ids, parameters);
+    // (Threads only: its progress is reported around it.)
+    share = asmvtk::PrepareSimplify(
+      comm, input, xyz.Doubles, ids, parameters, asmvtk::SMPExecution(this, 0.0, 0.0, threads));
     this->UpdateProgress(0.2);
     for (const std::string& dropped : share.Cloud.Dropped)
     {

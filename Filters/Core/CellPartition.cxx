@@ -58,7 +58,7 @@ std::pair<std::int64_t, long double> BestCut(
 } // namespace
 
 CellPartition MakeCellPartition(const GridSpec& grid, int processes, Coordinates xyz, IdView ids,
-  const std::function<void(std::vector<long long>&)>& sum)
+  const std::function<void(std::vector<long long>&)>& sum, const Execution& execution)
 {
   CellPartition partition;
   partition.Grid = grid;
@@ -109,29 +109,49 @@ CellPartition MakeCellPartition(const GridSpec& grid, int processes, Coordinates
     {
       pendingOf[cut[k].Node] = static_cast<int>(k);
     }
-    std::vector<long long> histogram(counts, 0);
-    for (Index id : ids)
-    {
-      double p[3];
-      xyz.Get(id, p);
-      std::int64_t ijk[3];
-      partition.CellOfPoint(p, ijk);
-      int node = 0;
-      while (partition.Nodes[node].Axis >= 0)
+    // (Fixed blocks of the points, each with its own counts, added up:
+    // integers, so the same counts whatever the thread count.)
+    const auto n = static_cast<Index>(ids.size());
+    const Index blocks = std::max<Index>(1, std::min<Index>(16, n / 65536));
+    std::vector<std::vector<long long>> partial(static_cast<std::size_t>(blocks));
+    execution.Run(0, blocks, [&](Index first, Index last) {
+      for (Index b = first; b < last; ++b)
       {
-        const CellPartition::Node& n = partition.Nodes[node];
-        node = ijk[n.Axis] < n.Split ? n.Low : n.High;
-      }
-      if (pendingOf[node] >= 0)
-      {
-        const Pending& box = cut[pendingOf[node]];
-        for (int a = 0; a < 3; ++a)
+        std::vector<long long>& counted = partial[static_cast<std::size_t>(b)];
+        counted.assign(counts, 0);
+        for (Index j = n / blocks * b + (n % blocks) * b / blocks;
+             j < n / blocks * (b + 1) + (n % blocks) * (b + 1) / blocks; ++j)
         {
-          if (box.Bins[a] > 0)
+          double p[3];
+          xyz.Get(ids[j], p);
+          std::int64_t ijk[3];
+          partition.CellOfPoint(p, ijk);
+          int node = 0;
+          while (partition.Nodes[node].Axis >= 0)
           {
-            ++histogram[box.Offset[a] + static_cast<std::size_t>(box.BinOf(a, ijk[a]))];
+            const CellPartition::Node& at = partition.Nodes[node];
+            node = ijk[at.Axis] < at.Split ? at.Low : at.High;
+          }
+          if (pendingOf[node] >= 0)
+          {
+            const Pending& box = cut[pendingOf[node]];
+            for (int a = 0; a < 3; ++a)
+            {
+              if (box.Bins[a] > 0)
+              {
+                ++counted[box.Offset[a] + static_cast<std::size_t>(box.BinOf(a, ijk[a]))];
+              }
+            }
           }
         }
+      }
+    });
+    std::vector<long long> histogram(counts, 0);
+    for (const std::vector<long long>& counted : partial)
+    {
+      for (std::size_t c = 0; c < counts; ++c)
+      {
+        histogram[c] += counted[c];
       }
     }
     if (sum)

@@ -99,7 +99,8 @@ struct VTKASMFILTERS_EXPORT CellPartition
 /// collective per level of the tree, ceil(log2(processes)) in all. Every
 /// process gets the same tree.
 VTKASMFILTERS_EXPORT CellPartition MakeCellPartition(const GridSpec& grid, int processes,
-  Coordinates xyz, IdView ids, const std::function<void(std::vector<long long>&)>& sum = {});
+  Coordinates xyz, IdView ids, const std::function<void(std::vector<long long>&)>& sum = {},
+  const Execution& execution = {});
 } // namespace asmcore
 
 #endif
