@@ -4,6 +4,7 @@
 #include "vtkASMDistributed.h"
 
 #include "Core/Grid.h"
+#include "Core/Selection.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -169,8 +170,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   // of every buffer: the buffers are the same whatever the thread count
   // (each destination's records in id order).
   const auto count = static_cast<Index>(ids.size());
-  const Index blocks = std::max<Index>(1, std::min<Index>(64, count / 65536));
-  auto blockBegin = [&](Index b) { return count / blocks * b + (count % blocks) * b / blocks; };
+  const Index blocks = asmcore::selection::BlockCount(count, Index(1) << 16);
+  auto blockBegin = [&](Index b) { return asmcore::selection::BlockBegin(count, blocks, b); };
   const auto k = static_cast<std::size_t>(processes);
   std::vector<std::size_t> at(static_cast<std::size_t>(blocks) * k, 0); // per (block, process)
   execution.Run(0, blocks, [&](Index first, Index last) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "CellPartition.h"
 
+#include "Selection.h"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -110,28 +112,24 @@ CellPartition MakeCellPartition(const GridSpec& grid, int processes, Coordinates
       pendingOf[cut[k].Node] = static_cast<int>(k);
     }
     // (Fixed blocks of the points, each with its own counts, added up:
-    // integers, so the same counts whatever the thread count.)
+    // integers, so the same counts whatever the thread count. At most
+    // 4 bytes per point of counts.)
     const auto n = static_cast<Index>(ids.size());
-    const Index blocks = std::max<Index>(1, std::min<Index>(16, n / 65536));
+    const Index blocks = std::max<Index>(1,
+      std::min<Index>(selection::BlockCount(n, Index(1) << 16), n / (2 * static_cast<Index>(counts) + 1)));
     std::vector<std::vector<long long>> partial(static_cast<std::size_t>(blocks));
     execution.Run(0, blocks, [&](Index first, Index last) {
       for (Index b = first; b < last; ++b)
       {
         std::vector<long long>& counted = partial[static_cast<std::size_t>(b)];
         counted.assign(counts, 0);
-        for (Index j = n / blocks * b + (n % blocks) * b / blocks;
-             j < n / blocks * (b + 1) + (n % blocks) * (b + 1) / blocks; ++j)
+        for (Index j = selection::BlockBegin(n, blocks, b); j < selection::BlockBegin(n, blocks, b + 1); ++j)
         {
           double p[3];
           xyz.Get(ids[j], p);
           std::int64_t ijk[3];
           partition.CellOfPoint(p, ijk);
-          int node = 0;
-          while (partition.Nodes[node].Axis >= 0)
-          {
-            const CellPartition::Node& at = partition.Nodes[node];
-            node = ijk[at.Axis] < at.Split ? at.Low : at.High;
-          }
+          const int node = partition.LeafOf(ijk);
           if (pendingOf[node] >= 0)
           {
             const Pending& box = cut[pendingOf[node]];

@@ -36,16 +36,19 @@ struct VTKASMFILTERS_EXPORT CellPartition
   GridSpec Grid;
   std::vector<Node> Nodes;
 
-  /// The owner of cell ijk (inside the grid).
-  int OwnerOf(const std::int64_t ijk[3]) const
+  /// The leaf (node index) holding cell ijk (inside the grid).
+  int LeafOf(const std::int64_t ijk[3]) const
   {
-    const Node* n = this->Nodes.data();
-    while (n->Axis >= 0)
+    int node = 0;
+    while (this->Nodes[node].Axis >= 0)
     {
-      n = this->Nodes.data() + (ijk[n->Axis] < n->Split ? n->Low : n->High);
+      const Node& n = this->Nodes[node];
+      node = ijk[n.Axis] < n.Split ? n.Low : n.High;
     }
-    return n->Rank;
+    return node;
   }
+  /// The owner of cell ijk (inside the grid).
+  int OwnerOf(const std::int64_t ijk[3]) const { return this->Nodes[this->LeafOf(ijk)].Rank; }
   /// The cell holding p (GridSpec::CellOf, as signed indices).
   void CellOfPoint(const double p[3], std::int64_t ijk[3]) const
   {
