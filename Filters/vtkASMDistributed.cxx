@@ -39,13 +39,13 @@ std::uint64_t Mix(std::uint64_t key)
 
 //------------------------------------------------------------------------------
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const asmcore::GridSpec& spec)
+  asmcore::IdView ids, const asmcore::GridSpec& spec, const asmcore::Execution& execution)
 {
   if (comm.Size() == 1)
   {
-    return asmcore::CountOccupiedCells(xyz, ids, spec);
+    return asmcore::CountOccupiedCells(xyz, ids, spec, execution);
   }
-  const std::vector<std::uint64_t> keys = asmcore::OccupiedCellKeys(xyz, ids, spec);
+  const std::vector<std::uint64_t> keys = asmcore::OccupiedCellKeys(xyz, ids, spec, execution);
   // Each key is counted by one process, chosen by a hash of the key.
   std::vector<std::vector<long long>> send(static_cast<std::size_t>(comm.Size()));
   for (std::uint64_t key : keys)
@@ -176,7 +176,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
 {
   SimplifyShare share;
   const Index total = comm.Sum(static_cast<Index>(ids.size()));
-  const asmcore::Bounds bounds = comm.Union(asmcore::ComputeBounds(xyz, ids));
+  const asmcore::Bounds bounds = comm.Union(asmcore::ComputeBounds(xyz, ids, execution));
   share.Diagonal = bounds.Diagonal();
   std::vector<double> centroid(3, 0.0);
   for (Index id : ids)
@@ -201,7 +201,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
     // As the serial search: first on the subsample picked by coordinates
     // (the same points however the cloud is split), then on all points.
     const asmcore::PointArray<double> subset = asmcore::CellSizeSubsample(
-      xyz, ids, static_cast<double>(total), targetCells);
+      xyz, ids, static_cast<double>(total), targetCells, execution);
     double start = 0.0;
     if (comm.Sum(static_cast<Index>(subset.size())) > 0)
     {
@@ -209,12 +209,12 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
       std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
       start = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
         [&](const asmcore::GridSpec& spec) {
-          return static_cast<double>(CountOccupiedCells(comm, subset.data(), subsetIds, spec));
+          return static_cast<double>(CountOccupiedCells(comm, subset.data(), subsetIds, spec, execution));
         });
     }
     cellSize = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
       [&](const asmcore::GridSpec& spec) {
-        return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec));
+        return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec, execution));
       },
       start);
   }
@@ -228,13 +228,13 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   const LocalCloud& cloud = share.Cloud;
   std::vector<Index> capacity;
   std::vector<double> variation;
-  for (std::size_t c = 0; c < cloud.CellKeys.size(); ++c)
+  for (Index c = 0; c < cloud.Cells.NumberOfCells(); ++c)
   {
-    const Index i = cloud.CellStart[c];
-    const Index j = cloud.CellStart[c + 1];
+    const Index i = cloud.Cells.CellStart[c];
+    const Index j = cloud.Cells.CellStart[c + 1];
     if (cloud.Owned[i])
     {
-      share.OwnedKeys.push_back(cloud.CellKeys[c]);
+      share.OwnedKeys.push_back(cloud.Cells.CellKey[c]);
       capacity.push_back(j - i);
       // The same frame the core computes (same points, same order).
       variation.push_back(asmcore::VariationWeightOf(parameters) != 0.0

@@ -206,7 +206,7 @@ private:
 
 /// Distinct non-empty cells of `spec` over all processes (collective).
 Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const asmcore::GridSpec& spec);
+  asmcore::IdView ids, const asmcore::GridSpec& spec, const asmcore::Execution& execution = {});
 
 /// Collective: which process owns each cell of `grid` (boxes of cells from a
 /// recursive bisection balanced by the points xyz[3*id], id in ids, of every
@@ -217,12 +217,15 @@ asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcor
 /// The points a process holds after redistribution, in canonical order.
 struct LocalCloud
 {
-  std::vector<double> Xyz;                  ///< owned and halo points
-  std::vector<Index> CellStart;             ///< cell c: points [CellStart[c], CellStart[c + 1])
-  std::vector<std::uint64_t> CellKeys;      ///< the cells' keys, ascending
-  std::vector<char> Owned;                  ///< 1: in a cell this process owns
-  std::vector<int> SourceRank;              ///< process that held the point
-  std::vector<long long> SourceId;          ///< its point id there
+  /// (The per-point arrays are PointArrays: filled in parallel, no serial
+  /// zero fill first.)
+  asmcore::PointArray<double> Xyz;          ///< owned and halo points
+  /// Their cells, in slot order (point i in slot i): cell c holds the points
+  /// [Cells.CellStart[c], Cells.CellStart[c + 1]), keys ascending.
+  asmcore::CellGrid Cells;
+  asmcore::PointArray<char> Owned;          ///< 1: in a cell this process owns
+  asmcore::PointArray<int> SourceRank;      ///< process that held the point
+  asmcore::PointArray<long long> SourceId;  ///< its point id there
 
   Index Size() const { return static_cast<Index>(this->Xyz.size() / 3); }
   /// The points, 0 .. Size() - 1.

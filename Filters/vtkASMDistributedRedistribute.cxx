@@ -282,8 +282,10 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   const asmcore::CellGrid grid = asmcore::BuildCellGrid(
     cloud.Xyz.data(), asmcore::IdView::Identity(n), partition.Grid, execution);
   // (From here on cloud.Xyz is rewritten in canonical order.)
-  cloud.CellStart.assign(grid.CellStart.begin(), grid.CellStart.end());
-  cloud.CellKeys = grid.CellKey;
+  cloud.Cells.Spec = grid.Spec;
+  cloud.Cells.CellStart = grid.CellStart;
+  cloud.Cells.CellKey = grid.CellKey;
+  cloud.Cells.SlotOrder = true;
   cloud.Owned.resize(n);
   cloud.SourceRank.resize(n);
   cloud.SourceId.resize(n);

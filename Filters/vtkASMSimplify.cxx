@@ -229,6 +229,7 @@ int vtkASMSimplify::RequestData(
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
     parameters.Grid = &share.Grid;
+    parameters.Cells = &share.Cloud.Cells;
     if (parameters.Mode == asmcore::SimplifyMode::Paper)
     {
       parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };

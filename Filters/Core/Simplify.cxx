@@ -90,6 +90,22 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
 CellGrid BuildRunGrid(Coordinates xyz, IdView ids,
   const SimplifyParameters& parameters, Index target, const Execution& execution)
 {
+  const auto n = static_cast<Index>(ids.size());
+  if (parameters.Cells && parameters.Cells->NumberOfPoints() == n)
+  {
+    CellGrid grid;
+    grid.Spec = parameters.Cells->Spec;
+    grid.CellStart = parameters.Cells->CellStart;
+    grid.CellKey = parameters.Cells->CellKey;
+    grid.Order.resize(ids.size());
+    execution.Run(0, n, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i)
+      {
+        grid.Order[i] = ids[i];
+      }
+    });
+    return grid;
+  }
   if (parameters.Grid)
   {
     return BuildCellGrid(xyz, ids, *parameters.Grid, execution);

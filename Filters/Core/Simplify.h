@@ -114,6 +114,11 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// halo of neighbouring cells, with the agreed grid and budgets.
   ///@{
   const GridSpec* Grid = nullptr; ///< the grid to use instead of one fitted to the points
+  /// The points' cells in that grid when the caller has grouped them already
+  /// (a distributed run's points arrive in cell order): cell c holds the
+  /// points ids[CellStart[c]] .. ids[CellStart[c + 1] - 1], in (key, id)
+  /// order, as BuildCellGrid would group them; they are not grouped again.
+  const CellGrid* Cells = nullptr;
   /// Budget N_c of the cell with this key, apportioned over all processes.
   /// Paper mode: -1 for halo cells (owned by another process: neighbours
   /// only, no samples, and their points join no sample here). Feature mode:
@@ -225,8 +230,9 @@ VTKASMFILTERS_EXPORT std::vector<double> CellShares(const std::vector<CellFrame>
   const CellGrid& grid, const SimplifyParameters& parameters, double exponent,
   std::vector<Index>& capacity);
 
-/// Step 1 of both modes, the grid: parameters.Grid when set (distributed
-/// runs), else cells of edge parameters.CellSize when it is positive and
+/// Step 1 of both modes, the grid: parameters.Cells when set (distributed
+/// runs: a copy, with the ids as its order), else the points grouped in
+/// parameters.Grid when set, else cells of edge parameters.CellSize when it is positive and
 /// finite, else the automatic cell size for about target / SamplesPerCell
 /// non-empty cells (BuildAutomaticCellGrid).
 VTKASMFILTERS_EXPORT CellGrid BuildRunGrid(Coordinates xyz, IdView ids,
