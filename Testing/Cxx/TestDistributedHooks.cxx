@@ -102,3 +102,68 @@ TEST(DistributedHooks, CellSplitGivesTheSerialSamplesSurfaceVariation)
 {
   CheckSplit(asmcore::WeightMode::SurfaceVariation);
 }
+
+// SimplifyParameters::Cells (a distributed run's points arrive grouped by
+// cell): BuildRunGrid takes the given cells as they are, with the ids as
+// their order, instead of grouping the points again; for points in cell
+// order that is the grid BuildCellGrid makes, so both modes give the same
+// samples and members.
+TEST(DistributedHooks, GivenCellsAreTakenAsTheGrid)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(5000, 2.0, 7);
+  const std::vector<Index> ids = asmtest::AllIds(cloud);
+  const asmcore::GridSpec spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(cloud.data(), ids), 0.35);
+  const asmcore::CellGrid grouped = asmcore::BuildCellGrid(cloud.data(), ids, spec);
+  ASSERT_GT(grouped.NumberOfCells(), 20);
+  // The points copied in cell order, as a distributed run holds them.
+  asmtest::Cloud ordered;
+  for (Index slot = 0; slot < static_cast<Index>(ids.size()); ++slot)
+  {
+    const double* p = &cloud[3 * grouped.Order[slot]];
+    asmtest::Add(ordered, p[0], p[1], p[2]);
+  }
+  asmcore::CellGrid given;
+  given.Spec = spec;
+  given.CellStart = grouped.CellStart;
+  given.CellKey = grouped.CellKey;
+  given.SlotOrder = true;
+
+  asmcore::SimplifyParameters p;
+  p.NumberOfSamples = 400;
+  p.Grid = &spec;
+  asmcore::SimplifyParameters q = p;
+  q.Cells = &given;
+  const asmcore::CellGrid regrouped = asmcore::BuildRunGrid(ordered.data(), ids, p, 400);
+  const asmcore::CellGrid taken = asmcore::BuildRunGrid(ordered.data(), ids, q, 400);
+  EXPECT_EQ(taken.Order, regrouped.Order);
+  EXPECT_EQ(taken.CellStart, regrouped.CellStart);
+  EXPECT_EQ(taken.CellKey, regrouped.CellKey);
+  EXPECT_FALSE(taken.SlotOrder);
+
+  // Taken as given: two cells merged into one stay merged.
+  asmcore::CellGrid merged = given;
+  merged.CellStart.erase(merged.CellStart.begin() + 1);
+  merged.CellKey.erase(merged.CellKey.begin() + 1);
+  q.Cells = &merged;
+  const asmcore::CellGrid mergedTaken = asmcore::BuildRunGrid(ordered.data(), ids, q, 400);
+  EXPECT_EQ(mergedTaken.NumberOfCells(), grouped.NumberOfCells() - 1);
+  EXPECT_EQ(mergedTaken.CellSizeOf(0), grouped.CellSizeOf(0) + grouped.CellSizeOf(1));
+
+  q.Cells = &given;
+  for (const auto mode : { asmcore::SimplifyMode::Paper, asmcore::SimplifyMode::FeaturePreserving })
+  {
+    p.Mode = q.Mode = mode;
+    const asmcore::SimplifyResult a = asmcore::Simplify(ordered.data(), ids, nullptr, p);
+    const asmcore::SimplifyResult b = asmcore::Simplify(ordered.data(), ids, nullptr, q);
+    ASSERT_EQ(a.Samples.size(), 400u);
+    ASSERT_EQ(a.Samples.size(), b.Samples.size());
+    for (std::size_t s = 0; s < a.Samples.size(); ++s)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_EQ(a.Samples[s].Position[c], b.Samples[s].Position[c]) << "sample " << s;
+      }
+    }
+    EXPECT_EQ(a.Members, b.Members);
+  }
+}
