@@ -47,12 +47,12 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
   }
   const std::vector<std::uint64_t> keys = asmcore::OccupiedCellKeys(xyz, ids, spec, execution);
   // Each key is counted by one process, chosen by a hash of the key.
-  std::vector<std::vector<long long>> send(static_cast<std::size_t>(comm.Size()));
+  std::vector<asmcore::PointArray<long long>> send(static_cast<std::size_t>(comm.Size()));
   for (std::uint64_t key : keys)
   {
     send[Mix(key) % static_cast<std::uint64_t>(comm.Size())].push_back(static_cast<long long>(key));
   }
-  std::vector<long long> mine = comm.Exchange(send);
+  asmcore::PointArray<long long> mine = comm.Exchange(send);
   std::sort(mine.begin(), mine.end());
   const Index distinct = static_cast<Index>(std::unique(mine.begin(), mine.end()) - mine.begin());
   return comm.Sum(distinct);

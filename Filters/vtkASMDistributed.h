@@ -190,9 +190,10 @@ public:
   /// Union of the processes' bounds (invalid ones ignored).
   asmcore::Bounds Union(const asmcore::Bounds& local) const;
   /// send[r] goes to process r; returns what every process sent to this
-  /// one, concatenated in process order. Empties `send`.
-  std::vector<double> Exchange(std::vector<std::vector<double>>& send) const;
-  std::vector<long long> Exchange(std::vector<std::vector<long long>>& send) const;
+  /// one, concatenated in process order. Empties `send`. (PointArrays: the
+  /// received values are not zero filled before they arrive.)
+  asmcore::PointArray<double> Exchange(std::vector<asmcore::PointArray<double>>& send) const;
+  asmcore::PointArray<long long> Exchange(std::vector<asmcore::PointArray<long long>>& send) const;
   /// Every process's `local`, concatenated in process order, on every process.
   /// `offset` (optional): where this process's values start in the result.
   std::vector<double> AllGather(const std::vector<double>& local, Index* offset = nullptr) const;

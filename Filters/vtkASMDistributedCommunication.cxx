@@ -127,8 +127,8 @@ namespace
 // All-to-all personalised exchange as K GatherV collectives (vtkCommunicator
 // has no AllToAllV; collectives cannot deadlock whatever the message sizes).
 template <typename T>
-std::vector<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
-  std::vector<std::vector<T>>& send)
+asmcore::PointArray<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
+  std::vector<asmcore::PointArray<T>>& send)
 {
   if (size == 1)
   {
@@ -150,7 +150,7 @@ std::vector<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
     offsets[from] = total;
     total += recvLengths[from];
   }
-  std::vector<T> received(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
+  asmcore::PointArray<T> received(static_cast<std::size_t>(std::max<vtkIdType>(total, 1)));
   T dummy{};
   for (int root = 0; root < size; ++root)
   {
@@ -165,13 +165,14 @@ std::vector<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
 
 } // namespace
 
-std::vector<double> Communication::Exchange(std::vector<std::vector<double>>& send) const
+asmcore::PointArray<double> Communication::Exchange(
+  std::vector<asmcore::PointArray<double>>& send) const
 {
   return ExchangeImpl(this->Ctrl, this->LocalRank, this->Processes, send);
 }
 
-std::vector<long long> Communication::Exchange(
-  std::vector<std::vector<long long>>& send) const
+asmcore::PointArray<long long> Communication::Exchange(
+  std::vector<asmcore::PointArray<long long>>& send) const
 {
   return ExchangeImpl(this->Ctrl, this->LocalRank, this->Processes, send);
 }

@@ -107,7 +107,7 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
     // Owned cells to the processes whose halo holds them: the owners of
     // the cells within `rings` (cell key halves, sample count, positions).
     const asmcore::CellPartition& partition = share.Partition;
-    std::vector<std::vector<double>> send(static_cast<std::size_t>(this->Comm.Size()));
+    std::vector<asmcore::PointArray<double>> send(static_cast<std::size_t>(this->Comm.Size()));
     for (std::size_t c = 0; c < keys.size(); ++c)
     {
       if (!share.Owns(keys[c]))
@@ -122,14 +122,14 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
         {
           return;
         }
-        std::vector<double>& out = send[static_cast<std::size_t>(q)];
+        asmcore::PointArray<double>& out = send[static_cast<std::size_t>(q)];
         asmcore::AppendAsDoubles(out, keys[c]);
         out.push_back(static_cast<double>(n));
         out.insert(out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
       });
     }
     this->Round(Exchange, {}); // (finished processes take part in the exchange too)
-    const std::vector<double> received = this->Comm.Exchange(send);
+    const asmcore::PointArray<double> received = this->Comm.Exchange(send);
     for (std::size_t at = 0; at + 2 < received.size();)
     {
       const std::uint64_t key = asmcore::FromDoubles(received.data() + at);
@@ -161,7 +161,7 @@ void CollectiveChannel::Finish()
     }
     if (exchange)
     {
-      std::vector<std::vector<double>> nothing(static_cast<std::size_t>(this->Comm.Size()));
+      std::vector<asmcore::PointArray<double>> nothing(static_cast<std::size_t>(this->Comm.Size()));
       this->Comm.Exchange(nothing);
     }
   }

@@ -165,7 +165,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
     partition.ForEachOwnerNear(ijk, haloRings, visit);
   };
   // Each process's records are counted first, so that the buffers are
-  // allocated once (zeroed: the padding bytes of the arrays' slots too).
+  // allocated once (not zero filled: each record is written whole, the
+  // padding bytes of the arrays' slots zeroed).
   // Fixed blocks of the ids, each counting and then writing its own part
   // of every buffer: the buffers are the same whatever the thread count
   // (each destination's records in id order).
@@ -184,7 +185,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
       }
     }
   });
-  std::vector<std::vector<double>> send(k);
+  std::vector<asmcore::PointArray<double>> send(k);
   for (std::size_t r = 0; r < k; ++r)
   {
     std::size_t total = 0; // (from here on at[b][r]: where block b writes for r)
@@ -224,6 +225,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
           {
             record[a] = p[a];
           }
+          std::fill(record + 3, record + payloadEnd, 0.0); // (records are compared byte for byte)
           for (std::size_t a = 0; a < slots.size(); ++a)
           {
             const ArraySlot& s = slots[a];
@@ -261,7 +263,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   {
     fill(0, blocks);
   }
-  const std::vector<double> received = comm.Exchange(send);
+  const asmcore::PointArray<double> received = comm.Exchange(send);
 
   // Canonical order: cell key, coordinates, then the record's bytes. The
   // points are grouped by cell as the core groups them (a counting sort of

@@ -84,7 +84,8 @@ struct VTKASMFILTERS_EXPORT GridSpec
 
 /// A 64-bit value (a cell key: up to 2^63) as two doubles, its exact 32-bit
 /// halves, for collectives that move doubles (distributed runs).
-inline void AppendAsDoubles(std::vector<double>& out, std::uint64_t value)
+template <typename DoubleVector>
+inline void AppendAsDoubles(DoubleVector& out, std::uint64_t value)
 {
   out.push_back(static_cast<double>(value >> 32));
   out.push_back(static_cast<double>(value & 0xFFFFFFFFULL));

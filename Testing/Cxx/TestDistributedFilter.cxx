@@ -11,7 +11,9 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkDummyController.h"
+#include "vtkFloatArray.h"
 #include "vtkPointData.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -239,4 +241,64 @@ TEST(DistributedFilter, SameOutputAtOneAndTwoThreads)
   }
   vtkSMPTools::Initialize(0);
   vtkSMPTools::SetBackend("Sequential");
+}
+
+// Arrays not laid out as one block of tuples (here a structure of arrays)
+// are read through GetTuple: on the distributed path too, where a point
+// kept by its own process is read from the input only when it is put in
+// canonical order. The output is that of the same values in an ordinary
+// array, with the ties of equal x that make records compared byte for byte.
+TEST(DistributedFilter, StructureOfArraysGivesTheSameOutput)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(30000, 1.0, 4);
+  asmtest::Cloud snapped = cloud;
+  for (std::size_t i = 0; i < snapped.size(); i += 3)
+  {
+    snapped[i] = std::floor(snapped[i] * 64.0) / 64.0; // runs of equal x
+  }
+  vtkSmartPointer<vtkPolyData> plain = asmtest::ToPolyData(snapped);
+  vtkSmartPointer<vtkPolyData> split = asmtest::ToPolyData(snapped);
+  vtkNew<vtkFloatArray> aos;
+  vtkNew<vtkSOADataArrayTemplate<float>> soa;
+  aos->SetName("Colour");
+  soa->SetName("Colour");
+  aos->SetNumberOfComponents(3);
+  soa->SetNumberOfComponents(3);
+  const vtkIdType n = plain->GetNumberOfPoints();
+  aos->SetNumberOfTuples(n);
+  soa->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const float v = static_cast<float>(std::fmod(0.37 * static_cast<double>(i * (c + 1)), 1.0));
+      aos->SetTypedComponent(i, c, v);
+      soa->SetTypedComponent(i, c, v);
+    }
+  }
+  plain->GetPointData()->AddArray(aos);
+  split->GetPointData()->AddArray(soa);
+  ASSERT_FALSE(soa->HasStandardMemoryLayout());
+  for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
+  {
+    vtkSmartPointer<vtkPolyData> a = SimplifyTo(plain, mode, 600);
+    vtkSmartPointer<vtkPolyData> b = SimplifyTo(split, mode, 600);
+    ASSERT_EQ(a->GetNumberOfPoints(), 600) << "mode " << mode;
+    ASSERT_EQ(b->GetNumberOfPoints(), 600) << "mode " << mode;
+    vtkDataArray* ca = a->GetPointData()->GetArray("Colour");
+    vtkDataArray* cb = b->GetPointData()->GetArray("Colour");
+    ASSERT_NE(ca, nullptr);
+    ASSERT_NE(cb, nullptr);
+    for (vtkIdType i = 0; i < 600; ++i)
+    {
+      double pa[3], pb[3];
+      a->GetPoint(i, pa);
+      b->GetPoint(i, pb);
+      for (int c = 0; c < 3; ++c)
+      {
+        ASSERT_EQ(pa[c], pb[c]) << "mode " << mode << " point " << i;
+        ASSERT_EQ(ca->GetComponent(i, c), cb->GetComponent(i, c)) << "mode " << mode << " point " << i;
+      }
+    }
+  }
 }
