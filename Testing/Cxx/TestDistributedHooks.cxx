@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The hooks of asmcore::SimplifyParameters used by distributed runs (Grid,
-// CellBudget, CloudCentroid): a cloud cut into "processes" by grid cell, each
+// Cells, CellBudget, CloudCentroid): a cloud cut into "processes" by grid cell, each
 // part simplified with the global grid and budgets, gives exactly the serial
 // samples (positions and the members that place them, CoreSize); halo cells
 // (budget -1) add nothing, and every point joins exactly one sample.
