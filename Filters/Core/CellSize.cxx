@@ -130,47 +130,39 @@ PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
   const double stride = std::max(4.0, std::floor(totalPoints / targetCells / 32.0));
   // Picked when the hash's high 32 bits fall below 2^32 / stride.
   const auto below = static_cast<std::uint64_t>(4294967296.0 / stride);
-  // Two passes over fixed blocks: flag and count, then copy (the order of
-  // `ids`).
+  // One pass over fixed blocks, each keeping its picked points (in the
+  // order of `ids`), then the blocks' points concatenated.
   const Index n = static_cast<Index>(ids.size());
   const Index blocks = BlockCount(n, 64, 1 << 15);
-  std::vector<Index> start(static_cast<std::size_t>(blocks) + 1, 0);
-  // (Written before it is read: no serial zero fill.)
-  std::unique_ptr<unsigned char[]> picked(new unsigned char[static_cast<std::size_t>(n)]);
+  std::vector<std::vector<double>> picked(static_cast<std::size_t>(blocks));
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
-      Index count = 0;
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
+      std::vector<double>& mine = picked[k];
+      const Index begin = BlockBegin(n, blocks, k), end = BlockBegin(n, blocks, k + 1);
+      mine.reserve(static_cast<std::size_t>(3.0 * static_cast<double>(end - begin) / stride * 1.25) + 24);
+      for (Index i = begin; i < end; ++i)
       {
         double p[3];
         xyz.Get(ids[i], p);
-        const bool pick = (CoordinateHash(p) >> 32) < below;
-        picked[i] = pick ? 1 : 0;
-        count += pick ? 1 : 0;
+        if ((CoordinateHash(p) >> 32) < below)
+        {
+          mine.insert(mine.end(), p, p + 3);
+        }
       }
-      start[k + 1] = count;
     }
   });
+  std::vector<std::size_t> start(static_cast<std::size_t>(blocks) + 1, 0);
   for (Index k = 0; k < blocks; ++k)
   {
-    start[k + 1] += start[k];
+    start[k + 1] = start[k] + picked[k].size();
   }
-  subset.resize(static_cast<std::size_t>(3 * start[blocks]));
+  subset.resize(start[blocks]);
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
-      double* out = subset.data() + 3 * start[k];
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
-      {
-        if (picked[i])
-        {
-          xyz.Get(ids[i], out);
-          out += 3;
-        }
-      }
+      std::copy(picked[k].begin(), picked[k].end(), subset.begin() + static_cast<std::ptrdiff_t>(start[k]));
+      std::vector<double>().swap(picked[k]);
     }
   });
   return subset;
