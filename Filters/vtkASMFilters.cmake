@@ -47,9 +47,11 @@ set(ASM_FILTERS_CORE
 )
 # Private VTK-layer helpers (not wrapped, not installed): <Name>.h + <Name>.cxx
 # in Filters/. vtkASMPointDataAggregation: the attribute aggregation;
+# vtkASMCompositeInput: a composite input's leaves as one cloud;
 # vtkASMDistributed*: the MPI communication (VTK::ParallelCore).
 set(ASM_FILTERS_PRIVATE
   vtkASMPointDataAggregation
+  vtkASMCompositeInput
   vtkASMDistributed
   vtkASMDistributedMetrics
 )

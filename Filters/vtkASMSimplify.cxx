@@ -6,12 +6,14 @@
 #include "vtkASMDistributed.h"
 #include "Core/Neighbors.h"
 #include "Core/Simplify.h"
+#include "vtkASMCompositeInput.h"
 #include "vtkASMFilterUtilities.h"
 #include "vtkASMPointDataAggregation.h"
 
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -61,6 +63,8 @@ vtkASMSimplify::~vtkASMSimplify()
 int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  // A composite input is one cloud (vtkASMCompositeInput.h), not one run per leaf.
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
 }
 
@@ -93,9 +97,20 @@ int vtkASMSimplify::RequestData(
   this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkSmartPointer<vtkPolyData> merged; // a composite input's leaves as one cloud
+  if (auto* composite = vtkCompositeDataSet::GetData(inputVector[0]))
+  {
+    std::vector<std::string> dropped;
+    merged = asmvtk::MergeLeaves(composite, asmvtk::LeafData::ArraysAndOrigins, dropped);
+    for (const std::string& name : dropped)
+    {
+      vtkWarningMacro(<< "Point array " << name << " is not on every block with points: it is not passed on.");
+    }
+    input = merged;
+  }
   if (!input || !output)
   {
-    vtkErrorMacro(<< "Input must be a vtkPointSet.");
+    vtkErrorMacro(<< "Input must be a vtkPointSet or a composite dataset of them.");
     return 0;
   }
   output->GetFieldData()->PassData(input->GetFieldData());
@@ -410,6 +425,19 @@ int vtkASMSimplify::RequestData(
   outPD->AddArray(clusterSizes);
   outPD->AddArray(variation);
   outPD->AddArray(originalIds);
+  if (merged)
+  {
+    // A composite input: the ids in the representative's own block (which
+    // "vtkOriginalBlockIds" names), not in the merged cloud.
+    if (vtkDataArray* leafIds = outPD->GetArray(asmvtk::LeafPointIdsName))
+    {
+      for (vtkIdType s = 0; s < count; ++s)
+      {
+        originalIds->SetValue(s, static_cast<vtkIdType>(leafIds->GetComponent(s, 0)));
+      }
+      outPD->RemoveArray(asmvtk::LeafPointIdsName);
+    }
+  }
   if (distributed)
   {
     // Which process's input vtkOriginalPointIds refers to.

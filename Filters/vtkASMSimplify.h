@@ -47,6 +47,15 @@
  * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
  * "NumberOfSkippedPoints" (non-finite input points ignored).
  *
+ * Composite input (a vtkMultiBlockDataSet of scans, the vtkPartitionedDataSet
+ * of a partitioned file, ...): the vtkPointSet leaves are ONE cloud, not one
+ * run each: N_s is the size of the whole output (a vtkPolyData), and
+ * overlapping leaves are thinned together. The point arrays that every leaf
+ * with points has (same name, type and components) are carried, the others
+ * dropped with a warning; "vtkOriginalBlockIds" (the leaf's flat index) and
+ * "vtkOriginalPointIds" (the id in that leaf) name each sample's
+ * representative.
+ *
  * Messy input: points with NaN or infinite coordinates are skipped with a
  * warning (counted in "NumberOfSkippedPoints"; OutputFraction is taken of the
  * finite points); duplicates, far outliers, georeferenced float coordinates,

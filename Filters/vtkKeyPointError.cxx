@@ -4,10 +4,12 @@
 #include "Core/Grid.h"
 #include "Core/Metrics.h"
 #include "Core/Neighbors.h"
+#include "vtkASMCompositeInput.h"
 #include "vtkASMDistributedMetrics.h"
 #include "vtkASMFilterUtilities.h"
 
 #include "vtkCellArray.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -84,6 +86,8 @@ vtkKeyPointError::~vtkKeyPointError()
 int vtkKeyPointError::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  // A composite input is one cloud (vtkASMCompositeInput.h), as vtkASMSimplify takes it.
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
 }
 
@@ -103,6 +107,19 @@ int vtkKeyPointError::RequestData(
   this->AbortExecute = 0;
   vtkPointSet* original = vtkPointSet::GetData(inputVector[0]);
   vtkPointSet* simplified = vtkPointSet::GetData(inputVector[1]);
+  // Composite inputs: their leaves as one cloud each (the original's points
+  // only; the simplified cloud's arrays are passed to the output).
+  vtkSmartPointer<vtkPolyData> merged[2];
+  for (int port = 0; port < 2; ++port)
+  {
+    if (auto* composite = vtkCompositeDataSet::GetData(inputVector[port]))
+    {
+      std::vector<std::string> dropped;
+      merged[port] = asmvtk::MergeLeaves(
+        composite, port == 0 ? asmvtk::LeafData::PointsOnly : asmvtk::LeafData::Arrays, dropped);
+      (port == 0 ? original : simplified) = merged[port];
+    }
+  }
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* table = vtkTable::GetData(outputVector, 1);
   if (!original || !simplified || !output || !table)

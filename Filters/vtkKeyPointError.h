@@ -6,7 +6,8 @@
  *
  * Input port 0 is the original cloud, port 1 a simplified cloud (from
  * vtkASMSimplify or any other method: only the points are used). Both may be
- * any vtkPointSet; non-finite points are skipped with a warning.
+ * any vtkPointSet, or a composite dataset of them, taken as one cloud as
+ * vtkASMSimplify takes it; non-finite points are skipped with a warning.
  *
  * Key point error (paper §3.4): the key points of both clouds are found with
  * the rule of vtkASMSimplify (§3.2: per grid cell, PCA, the Alpha bands along

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkASMCompositeInput.h"
+
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDataSetAttributesFieldList.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <set>
+
+namespace asmvtk
+{
+const char* const LeafPointIdsName = "vtkASMLeafPointIds";
+
+vtkSmartPointer<vtkPolyData> MergeLeaves(
+  vtkCompositeDataSet* input, LeafData what, std::vector<std::string>& dropped)
+{
+  struct Leaf
+  {
+    vtkPointSet* Points;
+    unsigned int FlatIndex;
+  };
+  std::vector<Leaf> leaves;
+  vtkIdType total = 0;
+  bool floats = true;
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(input->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+    if (leaf && leaf->GetPoints() && leaf->GetNumberOfPoints() > 0)
+    {
+      leaves.push_back({ leaf, it->GetCurrentFlatIndex() });
+      total += leaf->GetNumberOfPoints();
+      floats = floats && leaf->GetPoints()->GetDataType() == VTK_FLOAT;
+    }
+  }
+  auto merged = vtkSmartPointer<vtkPolyData>::New();
+  if (leaves.empty())
+  {
+    return merged;
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataType(floats ? VTK_FLOAT : VTK_DOUBLE);
+  points->SetNumberOfPoints(total);
+  vtkDataSetAttributes::FieldList fields(static_cast<int>(leaves.size()));
+  std::set<std::string> names;
+  vtkIdType at = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+  {
+    vtkPointSet* leaf = leaves[k].Points;
+    vtkDataArray* data = leaf->GetPoints()->GetData();
+    auto copyTo = [&](auto* to) {
+      // (Raw pointers for the usual arrays; the value range reads any other.)
+      if (auto* f = vtkFloatArray::FastDownCast(data))
+      {
+        std::copy_n(f->GetPointer(0), 3 * f->GetNumberOfTuples(), to);
+      }
+      else if (auto* d = vtkDoubleArray::FastDownCast(data))
+      {
+        std::copy_n(d->GetPointer(0), 3 * d->GetNumberOfTuples(), to);
+      }
+      else
+      {
+        const auto from = vtk::DataArrayValueRange<3>(data);
+        std::copy(from.begin(), from.end(), to);
+      }
+    };
+    if (floats)
+    {
+      copyTo(static_cast<vtkFloatArray*>(points->GetData())->GetPointer(3 * at));
+    }
+    else
+    {
+      copyTo(static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(3 * at));
+    }
+    at += leaf->GetNumberOfPoints();
+    vtkPointData* pd = leaf->GetPointData();
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      if (const char* name = pd->GetArrayName(a))
+      {
+        names.insert(name);
+      }
+    }
+    if (k == 0)
+    {
+      fields.InitializeFieldList(pd);
+    }
+    else
+    {
+      fields.IntersectFieldList(pd);
+    }
+  }
+  merged->SetPoints(points);
+  if (what == LeafData::PointsOnly)
+  {
+    return merged;
+  }
+
+  vtkPointData* out = merged->GetPointData();
+  out->CopyAllocate(fields, total);
+  at = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+  {
+    const vtkIdType n = leaves[k].Points->GetNumberOfPoints();
+    out->CopyData(fields, leaves[k].Points->GetPointData(), static_cast<int>(k), at, n, 0);
+    at += n;
+  }
+  for (const std::string& name : names)
+  {
+    if (!out->GetAbstractArray(name.c_str()))
+    {
+      dropped.push_back(name);
+    }
+  }
+
+  if (what == LeafData::ArraysAndOrigins)
+  {
+    vtkNew<vtkIdTypeArray> block, id;
+    block->SetName("vtkOriginalBlockIds");
+    id->SetName(LeafPointIdsName);
+    block->SetNumberOfTuples(total);
+    id->SetNumberOfTuples(total);
+    at = 0;
+    for (const Leaf& leaf : leaves)
+    {
+      for (vtkIdType i = 0; i < leaf.Points->GetNumberOfPoints(); ++i, ++at)
+      {
+        block->SetValue(at, leaf.FlatIndex);
+        id->SetValue(at, i);
+      }
+    }
+    out->AddArray(block);
+    out->AddArray(id);
+  }
+  return merged;
+}
+} // namespace asmvtk

@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Composite inputs (vtkASMCompositeInput.h): a vtkMultiBlockDataSet or a
+// vtkPartitionedDataSet of point sets is ONE cloud for vtkASMSimplify and
+// vtkKeyPointError, not one run per block: the output is one vtkPolyData of
+// exactly N_s points, the points of the blocks merged in traversal order
+// give the same samples, the arrays every block has are carried (the others
+// dropped with a warning), and vtkOriginalBlockIds / vtkOriginalPointIds
+// name the block and the point each sample's representative is.
+#include "FilterHelpers.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkKeyPointError.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPointData.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace
+{
+// Points [first, last) of `c` as a block with a "Value" array (double) and a
+// "Label" array (int: the point's index in the whole cloud).
+vtkSmartPointer<vtkPolyData> Block(const asmtest::Cloud& c, vtkIdType first, vtkIdType last)
+{
+  asmtest::Cloud part(c.begin() + 3 * first, c.begin() + 3 * last);
+  vtkSmartPointer<vtkPolyData> block = asmtest::ToPolyData(part);
+  vtkNew<vtkDoubleArray> value;
+  vtkNew<vtkIntArray> label;
+  value->SetName("Value");
+  label->SetName("Label");
+  for (vtkIdType i = first; i < last; ++i)
+  {
+    value->InsertNextValue(c[3 * i] + 2.0 * c[3 * i + 2]);
+    label->InsertNextValue(static_cast<int>(i));
+  }
+  block->GetPointData()->AddArray(value);
+  block->GetPointData()->AddArray(label);
+  return block;
+}
+
+vtkSmartPointer<vtkPolyData> SimplifyTo(vtkDataObject* input, int mode, vtkIdType count, int* warnings = nullptr)
+{
+  vtkNew<vtkASMSimplify> simplify;
+  vtkNew<asmtest::MessageCounter> messages;
+  simplify->AddObserver(vtkCommand::WarningEvent, messages);
+  simplify->SetMode(mode);
+  simplify->SetGenerateCurvature(false);
+  simplify->SetTargetModeToNumberOfOutputPoints();
+  simplify->SetNumberOfOutputPoints(count);
+  simplify->SetInputData(input);
+  simplify->Update();
+  if (warnings)
+  {
+    *warnings = messages->Warnings;
+  }
+  return vtkPolyData::SafeDownCast(simplify->GetOutputDataObject(0));
+}
+} // namespace
+
+TEST(CompositeInput, MultiBlockIsOneCloud)
+{
+  // Two overlapping halves of one sphere, an empty block, an image (not a
+  // point set: left out), and a block whose extra array the others lack.
+  const asmtest::Cloud cloud = asmtest::Sphere(30000, 1.0, 5);
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(5);
+  blocks->SetBlock(0, Block(cloud, 0, 12000));
+  blocks->SetBlock(1, vtkSmartPointer<vtkPolyData>::New());
+  blocks->SetBlock(2, vtkSmartPointer<vtkImageData>::New());
+  vtkSmartPointer<vtkPolyData> last = Block(cloud, 12000, 30000);
+  vtkNew<vtkDoubleArray> extra;
+  extra->SetName("OnlyInOneBlock");
+  extra->SetNumberOfTuples(18000);
+  extra->Fill(1.0);
+  last->GetPointData()->AddArray(extra);
+  blocks->SetBlock(3, last);
+  // The same points in one polydata, in traversal order.
+  vtkSmartPointer<vtkPolyData> whole = Block(cloud, 0, 30000);
+  const unsigned lastFlatIndex = 4; // (flat indices: the root 0, block k k + 1)
+
+  for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
+  {
+    int warnings = 0;
+    vtkSmartPointer<vtkPolyData> merged = SimplifyTo(blocks, mode, 700, &warnings);
+    vtkSmartPointer<vtkPolyData> plain = SimplifyTo(whole, mode, 700);
+    ASSERT_NE(merged, nullptr) << "mode " << mode << ": a vtkPolyData, not one output per block";
+    ASSERT_EQ(merged->GetNumberOfPoints(), 700) << "mode " << mode;
+    ASSERT_EQ(plain->GetNumberOfPoints(), 700);
+    EXPECT_GE(warnings, 1) << "the array one block lacks is named";
+    EXPECT_EQ(merged->GetPointData()->GetArray("OnlyInOneBlock"), nullptr);
+    vtkDataArray* value = merged->GetPointData()->GetArray("Value");
+    vtkDataArray* label = merged->GetPointData()->GetArray("Label");
+    vtkDataArray* block = merged->GetPointData()->GetArray("vtkOriginalBlockIds");
+    vtkDataArray* id = merged->GetPointData()->GetArray("vtkOriginalPointIds");
+    ASSERT_TRUE(value && label && block && id) << "mode " << mode;
+    EXPECT_EQ(merged->GetPointData()->GetArray("vtkASMLeafPointIds"), nullptr);
+    vtkDataArray* plainValue = plain->GetPointData()->GetArray("Value");
+    for (vtkIdType s = 0; s < 700; ++s)
+    {
+      double a[3], b[3];
+      merged->GetPoint(s, a);
+      plain->GetPoint(s, b);
+      for (int c = 0; c < 3; ++c)
+      {
+        ASSERT_EQ(a[c], b[c]) << "mode " << mode << " sample " << s;
+      }
+      ASSERT_EQ(value->GetComponent(s, 0), plainValue->GetComponent(s, 0));
+      // The representative, named by block and id, is the point Label names.
+      const auto flat = static_cast<unsigned>(block->GetComponent(s, 0));
+      const auto within = static_cast<vtkIdType>(id->GetComponent(s, 0));
+      ASSERT_TRUE(flat == 1 || flat == lastFlatIndex) << flat;
+      const vtkIdType offset = flat == 1 ? 0 : 12000;
+      ASSERT_EQ(static_cast<vtkIdType>(label->GetComponent(s, 0)), offset + within) << "sample " << s;
+    }
+  }
+}
+
+TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(20000, 1.0, 9);
+  vtkNew<vtkPartitionedDataSet> parts;
+  parts->SetNumberOfPartitions(3);
+  parts->SetPartition(0, Block(cloud, 0, 5000));
+  parts->SetPartition(1, Block(cloud, 5000, 14000));
+  parts->SetPartition(2, Block(cloud, 14000, 20000));
+  vtkSmartPointer<vtkPolyData> whole = Block(cloud, 0, 20000);
+  vtkSmartPointer<vtkPolyData> simplified = SimplifyTo(parts, vtkASMSimplify::FEATURE_PRESERVING, 900);
+  ASSERT_NE(simplified, nullptr);
+  ASSERT_EQ(simplified->GetNumberOfPoints(), 900);
+
+  // vtkKeyPointError: the partitioned original (and a partitioned
+  // simplified cloud) measure as the merged ones.
+  vtkNew<vtkPartitionedDataSet> simplifiedParts;
+  simplifiedParts->SetNumberOfPartitions(2);
+  simplifiedParts->SetPartition(0, simplified);
+  simplifiedParts->SetPartition(1, vtkSmartPointer<vtkPolyData>::New());
+  auto measure = [](vtkDataObject* original, vtkDataObject* reduced) {
+    vtkNew<vtkKeyPointError> error;
+    error->SetGenerateCurvature(false);
+    error->SetInputData(0, original);
+    error->SetInputData(1, reduced);
+    error->Update();
+    vtkPolyData* out = vtkPolyData::SafeDownCast(error->GetOutputDataObject(0));
+    EXPECT_NE(out, nullptr);
+    return out ? std::vector<double>{ asmtest::FieldValue(out, "MKPE"), asmtest::FieldValue(out, "AKPE"),
+                                      asmtest::FieldValue(out, "HausdorffDistance"),
+                                      static_cast<double>(out->GetNumberOfPoints()) }
+               : std::vector<double>{};
+  };
+  const std::vector<double> expected = measure(whole, simplified);
+  ASSERT_EQ(expected.size(), 4u);
+  EXPECT_EQ(expected[3], 900.0);
+  EXPECT_GT(expected[2], 0.0);
+  EXPECT_EQ(measure(parts, simplified), expected);
+  EXPECT_EQ(measure(parts, simplifiedParts), expected);
+}
