@@ -158,3 +158,18 @@ TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
   EXPECT_EQ(measure(parts, simplified), expected);
   EXPECT_EQ(measure(parts, simplifiedParts), expected);
 }
+
+// A composite without points (empty blocks, an image) gets a warning and an
+// empty output, as an empty point set does.
+TEST(CompositeInput, NoPointsGiveAWarningAndAnEmptyOutput)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, vtkSmartPointer<vtkPolyData>::New());
+  blocks->SetBlock(1, vtkSmartPointer<vtkImageData>::New());
+  int warnings = 0;
+  vtkSmartPointer<vtkPolyData> out = SimplifyTo(blocks, vtkASMSimplify::FEATURE_PRESERVING, 10, &warnings);
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(out->GetNumberOfPoints(), 0);
+  EXPECT_EQ(warnings, 1);
+}
