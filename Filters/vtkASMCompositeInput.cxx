@@ -6,6 +6,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDataSetAttributesFieldList.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
@@ -45,6 +46,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
     }
   }
   auto merged = vtkSmartPointer<vtkPolyData>::New();
+  merged->GetFieldData()->PassData(input->GetFieldData()); // (the composite's own)
   if (leaves.empty())
   {
     return merged;

@@ -8,7 +8,7 @@
  * run per leaf.
  *
  * The points of every vtkPointSet leaf, in the composite's traversal order,
- * become one vtkPolyData without cells: coordinates as floats when every
+ * become one vtkPolyData without cells (with the composite's field data): coordinates as floats when every
  * leaf's are floats, else as doubles; the point arrays that every leaf with
  * points has, with the same name, type and number of components
  * (vtkDataSetAttributes::FieldList; the others are dropped, and named),
