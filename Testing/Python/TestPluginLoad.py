@@ -121,3 +121,17 @@ asm.UpdatePipeline()
 n_out = servermanager.Fetch(asm).GetNumberOfPoints()
 assert n_out == 500, "NumberOfOutputPoints=500 gave %d points" % n_out
 print("TestPluginLoad: NumberOfOutputPoints OK")
+
+# Scans grouped (Group Datasets: a multiblock) are ONE cloud: one polydata of
+# the requested size, with the block and the point of each representative.
+kitten = PLYReader(FileNames=[os.path.join(data_dir, "kitten.ply")])
+group = GroupDatasets(Input=[reader, kitten])  # noqa: F405
+grouped = ASMSimplify(Input=group, TargetMode="Number Of Output Points",  # noqa: F405
+                      NumberOfOutputPoints=2000, GenerateCurvature=0)
+grouped.UpdatePipeline()
+out = servermanager.Fetch(grouped)
+assert out.IsA("vtkPolyData"), out.GetClassName()
+assert out.GetNumberOfPoints() == 2000, out.GetNumberOfPoints()
+blocks = out.GetPointData().GetArray("vtkOriginalBlockIds")
+assert blocks is not None and blocks.GetRange() == (1.0, 2.0), blocks and blocks.GetRange()
+print("TestPluginLoad: grouped scans OK")
