@@ -15,6 +15,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
 
@@ -41,6 +43,30 @@ inline vtkSmartPointer<vtkPolyData> ToPolyData(const Cloud& c, int type = VTK_DO
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   return pd;
+}
+
+/// The same points, in the same order, bit for bit.
+inline ::testing::AssertionResult SamePoints(vtkPointSet* a, vtkPointSet* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints())
+  {
+    return ::testing::AssertionFailure()
+      << a->GetNumberOfPoints() << " points against " << b->GetNumberOfPoints();
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double pa[3], pb[3];
+    a->GetPoint(i, pa);
+    b->GetPoint(i, pb);
+    for (int c = 0; c < 3; ++c)
+    {
+      if (pa[c] != pb[c])
+      {
+        return ::testing::AssertionFailure() << "point " << i << " differs";
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
 }
 
 inline double FieldValue(vtkDataSet* ds, const char* name)
