@@ -42,6 +42,7 @@ set(ASM_FILTERS_CORE
   FeatureOutput
   FeatureSimplify
   Neighbors
+  BlockNeighbors
   Curvature
   Metrics
 )

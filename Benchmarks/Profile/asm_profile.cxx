@@ -8,7 +8,7 @@
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages] [--floor]
  *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
- *               [--set Name=value,...]
+ *               [--set Name=value,...] [--error]
  *
  * --set sets more properties of vtkASMSimplify by name, as the benchmarks'
  * --asm does (asmbench::ApplyAsmSettings; e.g. --set FillHoles=0); it needs
@@ -23,6 +23,9 @@
  * --floor times the floor of any grid simplifier with a target count on
  * the input: bounds, one occupancy count, the grid and one pass over the
  * cells (floats in place, one thread).
+ * --error also times vtkKeyPointError (no curvature) on the input and the
+ * last run's output, as many runs, and prints its median wall time and
+ * figures (to check that a change to the measures leaves them unchanged).
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
@@ -42,6 +45,7 @@
 #include "BenchmarkMethods.h"
 #endif
 #include "vtkASMSimplify.h"
+#include "vtkKeyPointError.h"
 
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -52,6 +56,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <malloc.h>
@@ -376,6 +381,33 @@ void AddScanArrays(vtkPolyData* input)
   input->GetPointData()->SetNormals(normals);
 }
 
+// vtkKeyPointError on (original, simplified), `runs` times at the current
+// thread count: median wall time and the figures of the last run.
+void TimeKeyPointError(vtkPolyData* original, vtkPolyData* simplified, int runs)
+{
+  std::vector<double> times;
+  vtkSmartPointer<vtkTable> figures;
+  for (int r = 0; r < runs; ++r)
+  {
+    vtkNew<vtkKeyPointError> kpe;
+    kpe->SetInputData(0, original);
+    kpe->SetInputData(1, simplified);
+    kpe->SetGenerateCurvature(false);
+    const double start = Now();
+    kpe->Update();
+    times.push_back(Now() - start);
+    figures = vtkTable::SafeDownCast(kpe->GetOutputDataObject(1));
+  }
+  auto figure = [&](const char* name) {
+    vtkAbstractArray* column = figures ? figures->GetColumnByName(name) : nullptr;
+    return column ? column->GetVariantValue(0).ToDouble() : std::nan("");
+  };
+  std::printf("    vtkKeyPointError %.4f s (median of %d): AKPE %.17g MKPE %.17g "
+              "point-to-plane mean %.17g max %.17g Hausdorff %.17g\n",
+    Median(times), runs, figure("AKPE"), figure("MKPE"), figure("PointToPlaneMean"),
+    figure("PointToPlaneMax"), figure("HausdorffDistance"));
+}
+
 int main(int argc, char* argv[])
 {
   std::vector<long> sizes = { 1000000 };
@@ -383,6 +415,7 @@ int main(int argc, char* argv[])
   int runs = 3;
   double fraction = 0.05;
   bool curvature = false, stages = false, coherent = false, arrays = false, floor = false;
+  bool error = false;
   const char* ply = nullptr;
   const char* dump = nullptr;
   int mode = -1;
@@ -417,6 +450,8 @@ int main(int argc, char* argv[])
       stages = true;
     else if (a == "--floor")
       floor = true;
+    else if (a == "--error")
+      error = true;
     else
     {
       std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
@@ -475,6 +510,7 @@ int main(int argc, char* argv[])
       std::vector<double> times, cpu;
       double peak = 0.0;
       vtkIdType outCount = 0;
+      vtkSmartPointer<vtkPolyData> last;
       for (int r = 0; r < runs; ++r)
       {
         vtkNew<vtkASMSimplify> filter;
@@ -495,6 +531,7 @@ int main(int argc, char* argv[])
         peak = std::max(peak, 1024.0 * double(hwm - base) / double(np));
         vtkPolyData* out = filter->GetOutput();
         outCount = out->GetNumberOfPoints();
+        last = out;
         if (dump && r == runs - 1)
         {
           std::FILE* f = std::fopen(dump, "w");
@@ -521,6 +558,10 @@ int main(int argc, char* argv[])
         curvature ? "on" : "off", med, np / med / 1e6, medCpu, np / medCpu / 1e6, peak,
         (long long)outCount);
       std::fflush(stdout);
+      if (error && last)
+      {
+        TimeKeyPointError(input, last, runs);
+      }
     }
   }
   return 0;

@@ -61,8 +61,8 @@ VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz
 /// cloud `surfaceXyz` indexed by `surface` (one query each): in `plane`
 /// what PointToPlaneDistances gives, in `nearest` what NearestDistances
 /// gives (either may be null; resized to ids.size()). The queries are made
-/// in a spatially coherent order (a coarse Morton grid), whatever the order
-/// of the points; each answer is the same as alone.
+/// in blocks of nearby points (ForEachKNearest, BlockNeighbors.h), whatever
+/// the order of the points; each answer is the same as alone.
 VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids,
   const double* surfaceXyz, const Neighbors& surface, int k, std::vector<double>* plane,
   std::vector<double>* nearest, const Execution& execution = {});

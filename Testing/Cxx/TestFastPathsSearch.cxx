@@ -296,10 +296,11 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
   EXPECT_GT(changed, 0) << "some points must now belong to a moved sample";
 }
 
-// The fused, spatially ordered metric queries (SurfaceDistances) give, for
-// every point whatever the order of the ids, exactly the definitions: the
-// distance to the nearest surface point, and the distance to the PCA plane
-// of the k nearest (by squared distance, ties by id), by brute force.
+// The metric queries in blocks (SurfaceDistances) give, for every point
+// whatever the order of the ids, the definitions: exactly the distance to
+// the nearest surface point, and to rounding the distance to the PCA plane
+// of the k nearest (by squared distance, ties by id; by brute force). A
+// plane kept for a neighbour set is the set's own.
 TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
 {
   std::mt19937_64 rng(17);
@@ -329,6 +330,7 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
   ASSERT_EQ(qids.size(), nearest.size());
   EXPECT_EQ(nearest, asmcore::NearestDistances(queries.data(), qids, tree));
   EXPECT_EQ(plane, asmcore::PointToPlaneDistances(queries.data(), qids, surface.data(), tree, k));
+  double worst = 0.0;
   for (std::size_t i = 0; i < qids.size(); ++i)
   {
     const double* p = queries.data() + 3 * qids[i];
@@ -348,8 +350,14 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
     }
     const asmcore::CellFrame fit =
       asmcore::ComputeCellFrame(surface.data(), asmcore::IdView(near.data(), static_cast<std::size_t>(k)));
-    ASSERT_EQ(std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid)), plane[i]) << i;
+    // (The closed-form eigensolver of the metric agrees with ComputeCellFrame's
+    // iterative one to rounding.)
+    const double definition = std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid));
+    worst = std::max(worst, std::abs(definition - plane[i]));
   }
+  // (6.7e-13 measured: the queries lie up to 0.3 off the surface, whose
+  // spacing is about 0.04.)
+  EXPECT_LT(worst, 1e-11);
 }
 
 TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// ForEachKNearest (the metrics' k-nearest queries in blocks) gives, for every
+// finite query, exactly what Neighbors::KNearest gives: the same ids in the
+// same order with the same squared distances, ties by id included, whatever
+// the order of the ids and the thread count.
+#include "Core/BlockNeighbors.h"
+#include "Core/Neighbors.h"
+
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using asmcore::Index;
+using asmtest::Cloud;
+
+namespace
+{
+struct Answer
+{
+  int Visits = 0;
+  std::vector<Index> Ids;
+  std::vector<double> Sq;
+};
+
+std::vector<Answer> Visit(const Cloud& queries, asmcore::IdView ids, const Cloud& surface,
+  const asmcore::Neighbors& tree, int k, const asmcore::Execution& execution)
+{
+  std::vector<Answer> answers(ids.size());
+  std::mutex mutex;
+  asmcore::ForEachKNearest(
+    queries.data(), ids, surface.data(), tree, k,
+    [&](const asmcore::KNearestAnswer& answer) {
+      std::lock_guard<std::mutex> lock(mutex);
+      Answer& a = answers[static_cast<std::size_t>(answer.Query)];
+      ++a.Visits;
+      const double* x = queries.data() + 3 * ids[static_cast<std::size_t>(answer.Query)];
+      EXPECT_TRUE(std::equal(answer.Point, answer.Point + 3, x)) << "the query's own point";
+      a.Ids = answer.Ids;
+      a.Sq = answer.SqDist;
+      for (std::size_t j = 0; j < a.Ids.size(); ++j)
+      {
+        const double* y = surface.data() + 3 * a.Ids[j];
+        EXPECT_TRUE(std::equal(y, y + 3, answer.Xyz + 3 * j)) << "neighbour " << j << "'s point";
+      }
+    },
+    execution);
+  return answers;
+}
+
+// Every finite query visited once with the tree's own answer; the others
+// never.
+void ExpectTreeAnswers(const Cloud& queries, asmcore::IdView ids, const Cloud& surface,
+  const asmcore::Neighbors& tree, int k, const std::vector<Answer>& answers)
+{
+  std::vector<Index> near;
+  std::vector<double> sq;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    const double* p = queries.data() + 3 * ids[i];
+    const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    ASSERT_EQ(finite ? 1 : 0, answers[i].Visits) << "query " << i;
+    if (!finite)
+    {
+      continue;
+    }
+    tree.KNearest(p, k, near, sq);
+    ASSERT_EQ(near, answers[i].Ids) << "query " << i;
+    ASSERT_EQ(sq, answers[i].Sq) << "query " << i;
+  }
+}
+
+// A wavy sheet of `n` points and `m` queries near it (denser than the
+// sheet, so that the queries are answered in blocks).
+void Sheet(int n, int m, std::uint64_t seed, Cloud& surface, Cloud& queries)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto height = [](double x, double y) { return 0.2 * std::sin(3.0 * x) * std::cos(2.0 * y); };
+  for (int i = 0; i < n; ++i)
+  {
+    const double x = u(rng), y = u(rng);
+    asmtest::Add(surface, x, y, height(x, y) + 0.005 * u(rng));
+  }
+  for (int i = 0; i < m; ++i)
+  {
+    const double x = 1.1 * u(rng), y = 1.1 * u(rng);
+    asmtest::Add(queries, x, y, height(x, y) + 0.02 * u(rng));
+  }
+}
+} // namespace
+
+TEST(BlockNeighbors, DenseQueriesGetTheTreeAnswers)
+{
+  Cloud surface, queries;
+  Sheet(2000, 60000, 3, surface, queries);
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  for (int k : { 1, 3, 8, 20 })
+  {
+    const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
+  }
+}
+
+TEST(BlockNeighbors, ListedIdsInAnyOrderAndNonFiniteQueries)
+{
+  Cloud surface, queries;
+  Sheet(1500, 40000, 5, surface, queries);
+  queries[3 * 17 + 1] = std::numeric_limits<double>::quiet_NaN();
+  queries[3 * 901] = std::numeric_limits<double>::infinity();
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  // A shuffled subset (a copy of the points is searched) and a range
+  // starting after 0 (searched in place).
+  std::vector<Index> shuffled(queries.size() / 3);
+  std::iota(shuffled.begin(), shuffled.end(), Index(0));
+  std::mt19937_64 rng(8);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  shuffled.resize(shuffled.size() - 1000);
+  std::vector<Index> range(30000);
+  std::iota(range.begin(), range.end(), Index(10));
+  for (const std::vector<Index>* ids : { &shuffled, &range })
+  {
+    const auto serial = Visit(queries, *ids, surface, tree, 8, {});
+    ExpectTreeAnswers(queries, *ids, surface, tree, 8, serial);
+    const auto threaded = Visit(queries, *ids, surface, tree, 8, asmtest::UnevenTwoThreads());
+    for (std::size_t i = 0; i < ids->size(); ++i)
+    {
+      ASSERT_EQ(serial[i].Ids, threaded[i].Ids) << i;
+      ASSERT_EQ(serial[i].Sq, threaded[i].Sq) << i;
+    }
+  }
+}
+
+TEST(BlockNeighbors, TiesAreBrokenByIdAsInTheTree)
+{
+  // A lattice of points, each three times (ids far apart), and queries on
+  // lattice points and halfway between them: many equal distances.
+  Cloud surface, queries;
+  for (int copy = 0; copy < 3; ++copy)
+  {
+    for (int i = 0; i < 20; ++i)
+    {
+      for (int j = 0; j < 20; ++j)
+      {
+        asmtest::Add(surface, 0.1 * i, 0.1 * j, 0.0);
+      }
+    }
+  }
+  for (int i = 0; i < 78; ++i)
+  {
+    for (int j = 0; j < 78; ++j)
+    {
+      asmtest::Add(queries, 0.025 * i, 0.025 * j, (i + j) % 3 == 0 ? 0.0 : 0.01);
+    }
+  }
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+  for (int k : { 2, 5, 8 })
+  {
+    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
+  }
+}
+
+TEST(BlockNeighbors, SmallSurfacesAndNoCoordinates)
+{
+  Cloud surface, queries;
+  Sheet(5, 3000, 9, surface, queries);
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+  // k at and beyond the surface's size: every point, sorted.
+  for (int k : { 4, 5, 9 })
+  {
+    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
+  }
+  // Without the surface's coordinates each query is searched on its own.
+  std::vector<int> visits(ids.size(), 0);
+  asmcore::ForEachKNearest(queries.data(), ids, nullptr, tree, 2,
+    [&](const asmcore::KNearestAnswer& answer) {
+      ++visits[static_cast<std::size_t>(answer.Query)];
+      EXPECT_EQ(2u, answer.Ids.size());
+      EXPECT_EQ(nullptr, answer.Xyz);
+    });
+  EXPECT_EQ(std::vector<int>(ids.size(), 1), visits);
+  // No visit: k <= 0, an empty surface.
+  int none = 0;
+  auto count = [&](const asmcore::KNearestAnswer&) { ++none; };
+  asmcore::ForEachKNearest(queries.data(), ids, surface.data(), tree, 0, count);
+  asmcore::ForEachKNearest(queries.data(), ids, surface.data(), asmcore::Neighbors(), 3, count);
+  EXPECT_EQ(0, none);
+}
