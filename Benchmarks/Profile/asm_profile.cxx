@@ -23,9 +23,10 @@
  * --floor times the floor of any grid simplifier with a target count on
  * the input: bounds, one occupancy count, the grid and one pass over the
  * cells (floats in place, one thread).
- * --error also times vtkKeyPointError (no curvature) on the input and the
- * last run's output, as many runs, and prints its median wall time and
- * figures (to check that a change to the measures leaves them unchanged).
+ * --error also times vtkKeyPointError on the input and the last run's
+ * output (with curvature when --curvature is given), as many runs, and
+ * prints its median wall time and figures (to check that a change to the
+ * measures leaves them unchanged).
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
@@ -383,7 +384,7 @@ void AddScanArrays(vtkPolyData* input)
 
 // vtkKeyPointError on (original, simplified), `runs` times at the current
 // thread count: median wall time and the figures of the last run.
-void TimeKeyPointError(vtkPolyData* original, vtkPolyData* simplified, int runs)
+void TimeKeyPointError(vtkPolyData* original, vtkPolyData* simplified, int runs, bool curvature)
 {
   std::vector<double> times;
   vtkSmartPointer<vtkTable> figures;
@@ -392,7 +393,7 @@ void TimeKeyPointError(vtkPolyData* original, vtkPolyData* simplified, int runs)
     vtkNew<vtkKeyPointError> kpe;
     kpe->SetInputData(0, original);
     kpe->SetInputData(1, simplified);
-    kpe->SetGenerateCurvature(false);
+    kpe->SetGenerateCurvature(curvature);
     const double start = Now();
     kpe->Update();
     times.push_back(Now() - start);
@@ -560,7 +561,7 @@ int main(int argc, char* argv[])
       std::fflush(stdout);
       if (error && last)
       {
-        TimeKeyPointError(input, last, runs);
+        TimeKeyPointError(input, last, runs, curvature);
       }
     }
   }
