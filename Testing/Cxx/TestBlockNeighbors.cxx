@@ -195,3 +195,25 @@ TEST(BlockNeighbors, SmallSurfacesAndNoCoordinates)
   asmcore::ForEachKNearest(queries.data(), ids, surface.data(), asmcore::Neighbors(), 3, count);
   EXPECT_EQ(0, none);
 }
+
+TEST(BlockNeighbors, FarFromTheOriginAsTheTree)
+{
+  // Georeferenced coordinates: millimetre spacing 10^7 units from the origin,
+  // where a coordinate's last place is about 2e-9 (the radii's slack must
+  // cover the rounding of the differences).
+  Cloud surface, queries;
+  Sheet(2000, 30000, 13, surface, queries);
+  for (Cloud* cloud : { &surface, &queries })
+  {
+    for (std::size_t i = 0; i < cloud->size(); ++i)
+    {
+      (*cloud)[i] = 1e7 * (i % 3 == 0 ? 1.0 : 2.0) + 1e-3 * (*cloud)[i];
+    }
+  }
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+  for (int k : { 1, 8 })
+  {
+    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
+  }
+}
