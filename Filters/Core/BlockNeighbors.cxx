@@ -40,7 +40,8 @@ inline bool Finite(const double* p)
 }
 
 // The k smallest (squared distance, id) pairs, sorted, as the tree keeps
-// them (SortedKnn in Neighbors.cxx).
+// them (SortedKnn in Neighbors.cxx: the same insertion, in the same order,
+// NeighborPrecedes), with where each is among the candidates.
 class KBest
 {
 public:
@@ -56,13 +57,13 @@ public:
   double Worst() const { return this->D[static_cast<std::size_t>(this->K - 1)]; }
   bool Accepts(double d, Index id) const
   {
-    return this->Count < this->K || d < this->Worst() ||
-      (d == this->Worst() && id < this->Ids[static_cast<std::size_t>(this->K - 1)]);
+    return this->Count < this->K ||
+      NeighborPrecedes(d, id, this->Worst(), this->Ids[static_cast<std::size_t>(this->K - 1)]);
   }
   void Add(double d, Index id, std::size_t slot)
   {
     std::size_t i = static_cast<std::size_t>(this->Count < this->K ? this->Count++ : this->K - 1);
-    while (i > 0 && (this->D[i - 1] > d || (this->D[i - 1] == d && this->Ids[i - 1] > id)))
+    while (i > 0 && NeighborPrecedes(d, id, this->D[i - 1], this->Ids[i - 1]))
     {
       this->D[i] = this->D[i - 1];
       this->Ids[i] = this->Ids[i - 1];

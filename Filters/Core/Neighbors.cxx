@@ -46,14 +46,13 @@ public:
   }
   bool Accepts(double d, Index id) const
   {
-    return this->Count < this->K || d < this->D[this->K - 1] ||
-      (d == this->D[this->K - 1] && id < this->Ids[this->K - 1]);
+    return this->Count < this->K || NeighborPrecedes(d, id, this->D[this->K - 1], this->Ids[this->K - 1]);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
   void Add(double d, Index id)
   {
     int i = this->Count < this->K ? this->Count++ : this->K - 1;
-    while (i > 0 && (this->D[i - 1] > d || (this->D[i - 1] == d && this->Ids[i - 1] > id)))
+    while (i > 0 && NeighborPrecedes(d, id, this->D[i - 1], this->Ids[i - 1]))
     {
       this->D[i] = this->D[i - 1];
       this->Ids[i] = this->Ids[i - 1];

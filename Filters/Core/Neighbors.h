@@ -64,6 +64,13 @@
 
 namespace asmcore
 {
+/// The order of every answer: (squared distance d1, id1) comes before
+/// (d2, id2) when nearer, or as near with a smaller id.
+inline bool NeighborPrecedes(double d1, Index id1, double d2, Index id2)
+{
+  return d1 < d2 || (d1 == d2 && id1 < id2);
+}
+
 /// One nearest point: its id and (not squared) distance.
 struct VTKASMFILTERS_EXPORT NearestPoint
 {
