@@ -63,8 +63,11 @@ std::vector<double> Flatten(const std::vector<Eigen::Vector3d>& points)
 
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
   asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
-  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors)
+  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors,
+  const asmcore::Execution& threads)
 {
+  asmcore::Execution execution;
+  execution.For = threads.For; // (no progress: see the header)
   DistributedComparison out;
   asmcore::Comparison& result = out.Figures;
 
@@ -93,9 +96,9 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   }
 
   // One grid over both clouds, sized as the simplifier would size it.
-  const asmcore::Bounds original = comm.Union(asmcore::ComputeBounds(xyz, ids));
+  const asmcore::Bounds original = comm.Union(asmcore::ComputeBounds(xyz, ids, execution));
   asmcore::Bounds both = original;
-  const asmcore::Bounds simplified = asmcore::ComputeBounds(all.data(), allIds);
+  const asmcore::Bounds simplified = asmcore::ComputeBounds(all.data(), allIds, execution);
   for (int a = 0; a < 3; ++a)
   {
     both.Min[a] = std::min(both.Min[a], simplified.Min[a]);
@@ -132,13 +135,13 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   asmcore::KeyPointRule rule = options.Rule;
   rule.ErrorTolerance = 0.0;
   rule.Snap = false;
-  const auto originalKeys = asmcore::CloudKeyPoints(oxyz, owned, spec, rule);
-  const auto simplifiedKeys = asmcore::CloudKeyPoints(all.data(), allIds, spec, rule);
+  const auto originalKeys = asmcore::CloudKeyPoints(oxyz, owned, spec, rule, execution);
+  const auto simplifiedKeys = asmcore::CloudKeyPoints(all.data(), allIds, spec, rule, execution);
   result.OriginalKeyPoints = comm.Sum(static_cast<Index>(originalKeys.size()));
   result.SimplifiedKeyPoints = static_cast<Index>(simplifiedKeys.size());
   const std::vector<double> keyXyz = Flatten(originalKeys);
   const std::vector<double> simplifiedKeyXyz = Flatten(simplifiedKeys);
-  const asmcore::Neighbors simplifiedTree(all.data(), allIds);
+  const asmcore::Neighbors simplifiedTree(all.data(), allIds, execution);
   const asmcore::Neighbors simplifiedKeyTree(
     simplifiedKeyXyz.data(), Iota(simplifiedKeys.size()));
   std::vector<double> keyErrors = asmcore::NearestDistances(keyXyz.data(),
@@ -158,7 +161,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   {
     std::vector<double> nearest, plane;
     asmcore::SurfaceDistances(
-      oxyz, owned, all.data(), simplifiedTree, options.PlaneNeighbors, &plane, &nearest);
+      oxyz, owned, all.data(), simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
     result.OriginalToSimplified = Reduce(comm, nearest);
     result.PointToPlane = Reduce(comm, plane);
   }
@@ -173,10 +176,10 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
       mineToMeasure.push_back(j);
     }
   }
-  const asmcore::Neighbors localTree(oxyz, cloud.Ids());
+  const asmcore::Neighbors localTree(oxyz, cloud.Ids(), execution);
   std::vector<double> nearest, plane;
   asmcore::SurfaceDistances(
-    all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors, &plane, &nearest);
+    all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors, &plane, &nearest, execution);
   const std::size_t n = allIds.size();
   const int fields = curvatureNeighbors > 0 ? 4 : 2;
   std::vector<double> perPoint(fields * n, 0.0);
@@ -198,7 +201,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
     }
     const auto estimates = asmcore::EstimateCurvature(oxyz, cloud.Ids(), localTree, queries.data(),
       static_cast<Index>(mineToMeasure.size()), haveNormals ? orient.data() : nullptr,
-      curvatureNeighbors, asmcore::Execution{});
+      curvatureNeighbors, execution);
     for (std::size_t m = 0; m < estimates.size(); ++m)
     {
       perPoint[2 * n + mineToMeasure[m]] = estimates[m].MeanCurvature;

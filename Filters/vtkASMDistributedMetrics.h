@@ -38,10 +38,13 @@ struct DistributedComparison
 };
 
 /// Collective. `snormals` (sids order x 3, may be null on every process)
-/// orients the curvature; curvatureNeighbors <= 0: no curvature.
+/// orients the curvature; curvatureNeighbors <= 0: no curvature. The
+/// process's own loops run on `threads` (its For only: a progress report
+/// that aborts one process would leave the others waiting in a collective).
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
   asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
-  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors);
+  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors,
+  const asmcore::Execution& threads = {});
 } // namespace asmvtk
 
 #endif

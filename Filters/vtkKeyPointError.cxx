@@ -192,7 +192,7 @@ int vtkKeyPointError::RequestData(
     }
     shared = asmvtk::CompareDistributed(comm, orig.Xyz, orig.Ids, simp.Xyz, simp.Ids,
       inNormals && inNormals->GetNumberOfComponents() == 3 ? normals.data() : nullptr, options,
-      this->GenerateCurvature ? this->CurvatureNeighbors : 0);
+      this->GenerateCurvature ? this->CurvatureNeighbors : 0, asmvtk::SMPExecution(this, 0.0, 0.8));
   }
   const asmcore::Neighbors originalTree = distributed
     ? asmcore::Neighbors()
