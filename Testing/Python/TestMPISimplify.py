@@ -74,6 +74,11 @@ else:
     asm.SetFeatureSamplesPerCell(1.0)
     assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
     assert asm.GetCoveringRounds() == 0  # (off by default; CoveringRoundsOverSlabs tests it)
+if os.environ.get("VTK_SMP_BACKEND_IN_USE") == "STDThread":
+    # The threaded runs: threads whatever the size of a process's share.
+    from vtkmodules.vtkCommonCore import vtkSMPTools
+    assert vtkSMPTools.GetBackend() == "STDThread", vtkSMPTools.GetBackend()
+    asm.SetMinimumPointsForThreads(0)
 asm.Update()
 out = asm.GetOutput()
 # The distributed path (every run under mpiexec, K = 1 included) says which
