@@ -267,7 +267,8 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
       }
     }
   }
-  const IdView positions = finite < n ? IdView(listed) : IdView::Identity(static_cast<std::size_t>(n));
+  const IdView positions =
+    finite < n ? IdView(listed) : IdView::Identity(static_cast<std::size_t>(n));
 
   // Blocks: the cells of a grid about one k-th neighbour distance wide.
   const double edge = BlockEdge * TypicalKthDistance(q, positions, surface, k);

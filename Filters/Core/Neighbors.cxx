@@ -46,7 +46,8 @@ public:
   }
   bool Accepts(double d, Index id) const
   {
-    return this->Count < this->K || NeighborPrecedes(d, id, this->D[this->K - 1], this->Ids[this->K - 1]);
+    return this->Count < this->K ||
+      NeighborPrecedes(d, id, this->D[this->K - 1], this->Ids[this->K - 1]);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
   void Add(double d, Index id)

@@ -352,7 +352,8 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
       asmcore::ComputeCellFrame(surface.data(), asmcore::IdView(near.data(), static_cast<std::size_t>(k)));
     // (The closed-form eigensolver of the metric agrees with ComputeCellFrame's
     // iterative one to rounding.)
-    const double definition = std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid));
+    const double definition =
+      std::abs(fit.Normal().dot(Eigen::Vector3d(p[0], p[1], p[2]) - fit.Centroid));
     worst = std::max(worst, std::abs(definition - plane[i]));
   }
   // (6.7e-13 measured: the queries lie up to 0.3 off the surface, whose
