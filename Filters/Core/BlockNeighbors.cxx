@@ -16,8 +16,13 @@ namespace
 constexpr double MinQueriesPerBlock = 3.0;
 // The block edge in typical k-th neighbour distances. Measured on 4 M
 // points against their ASM simplification (vtkKeyPointError, k = 8): of
-// 0.5, 1, 1.5 and 2, 1 was fastest at 1 % and 5 %; at 20 %, 2 was 6 % faster.
+// 0.5, 1, 1.5 and 2, 1 was fastest at 1 % and 5 %; at 20 % (about 13
+// queries a block) 2 was 6 % faster, hence the widening below.
 constexpr double BlockEdge = 1.0;
+// Blocks with fewer queries than this on average are made wider (by at
+// most MaxWidening), on a surface as many more queries as the square.
+constexpr double FullBlock = 32.0;
+constexpr double MaxWidening = 2.0;
 // Queries whose k-th neighbour distance sets the block edge (the median).
 constexpr Index Probes = 255;
 // Widening of the radii against rounding (distances are accurate to a few
@@ -273,8 +278,16 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
   // Blocks: the cells of a grid about one k-th neighbour distance wide.
   const double edge = BlockEdge * TypicalKthDistance(q, positions, surface, k);
   const Vec3Field queries(q);
-  const GridSpec spec = GridSpec::Make(ComputeBounds(queries, positions, execution), edge);
-  const CellGrid grid = BuildCellGrid(queries, positions, spec, execution);
+  const Bounds bounds = ComputeBounds(queries, positions, execution);
+  CellGrid grid = BuildCellGrid(queries, positions, GridSpec::Make(bounds, edge), execution);
+  const double perBlock = static_cast<double>(finite) / static_cast<double>(grid.NumberOfCells());
+  if (perBlock >= MinQueriesPerBlock && perBlock < FullBlock)
+  {
+    // Few queries per block (a simplification keeping a large share): wider
+    // blocks, each with more queries on about the same candidates' share.
+    const double wider = std::min(MaxWidening, std::sqrt(FullBlock / perBlock));
+    grid = BuildCellGrid(queries, positions, GridSpec::Make(bounds, edge * wider), execution);
+  }
   const Index cells = grid.NumberOfCells();
   const bool blocks = surfaceXyz && surface.Size() > k &&
     static_cast<double>(finite) >= MinQueriesPerBlock * static_cast<double>(cells);

@@ -3,7 +3,8 @@
  * The k nearest points of a cloud for many query points at once (the
  * metrics of vtkKeyPointError: every original point against the simplified
  * cloud). The queries are grouped by the cells of a grid about as fine as
- * the typical k-th neighbour distance. For a block (the queries of one
+ * the typical k-th neighbour distance (up to twice as coarse when that
+ * leaves fewer than 32 queries a block). For a block (the queries of one
  * cell, centroid c, all within R of c), every query q's k nearest lie
  * within r_c + 2R of c, r_c being c's own k-th neighbour distance: the k
  * points nearest c are within r_c + |q - c| of q, so q's k-th distance is

@@ -109,6 +109,17 @@ TEST(BlockNeighbors, DenseQueriesGetTheTreeAnswers)
   }
 }
 
+TEST(BlockNeighbors, FewQueriesPerBlockGetTheTreeAnswers)
+{
+  // Four queries per surface point: about ten per block of one k-th
+  // distance (k = 8), so the blocks are made wider.
+  Cloud surface, queries;
+  Sheet(4000, 16000, 11, surface, queries);
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+  ExpectTreeAnswers(queries, ids, surface, tree, 8, Visit(queries, ids, surface, tree, 8, {}));
+}
+
 TEST(BlockNeighbors, ListedIdsInAnyOrderAndNonFiniteQueries)
 {
   Cloud surface, queries;
