@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -77,6 +78,18 @@ void ExpectTreeAnswers(const Cloud& queries, asmcore::IdView ids, const Cloud& s
   }
 }
 
+// Every query of `queries` (ids 0, 1, ...) against a tree of `surface`, at
+// each k: the tree's own answers.
+void ExpectTreeAnswersAt(const Cloud& surface, const Cloud& queries, std::initializer_list<int> ks)
+{
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
+  for (int k : ks)
+  {
+    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
+  }
+}
+
 // A wavy sheet of `n` points and `m` queries near it (denser than the
 // sheet, so that the queries are answered in blocks).
 void Sheet(int n, int m, std::uint64_t seed, Cloud& surface, Cloud& queries)
@@ -101,12 +114,7 @@ TEST(BlockNeighbors, DenseQueriesGetTheTreeAnswers)
 {
   Cloud surface, queries;
   Sheet(2000, 60000, 3, surface, queries);
-  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
-  for (int k : { 1, 3, 8, 20 })
-  {
-    const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
-  }
+  ExpectTreeAnswersAt(surface, queries, { 1, 3, 8, 20 });
 }
 
 TEST(BlockNeighbors, FewQueriesPerBlockGetTheTreeAnswers)
@@ -115,9 +123,7 @@ TEST(BlockNeighbors, FewQueriesPerBlockGetTheTreeAnswers)
   // distance (k = 8), so the blocks are made wider.
   Cloud surface, queries;
   Sheet(4000, 16000, 11, surface, queries);
-  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
-  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-  ExpectTreeAnswers(queries, ids, surface, tree, 8, Visit(queries, ids, surface, tree, 8, {}));
+  ExpectTreeAnswersAt(surface, queries, { 8 });
 }
 
 TEST(BlockNeighbors, ListedIdsInAnyOrderAndNonFiniteQueries)
@@ -171,25 +177,17 @@ TEST(BlockNeighbors, TiesAreBrokenByIdAsInTheTree)
       asmtest::Add(queries, 0.025 * i, 0.025 * j, (i + j) % 3 == 0 ? 0.0 : 0.01);
     }
   }
-  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
-  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-  for (int k : { 2, 5, 8 })
-  {
-    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
-  }
+  ExpectTreeAnswersAt(surface, queries, { 2, 5, 8 });
 }
 
 TEST(BlockNeighbors, SmallSurfacesAndNoCoordinates)
 {
   Cloud surface, queries;
   Sheet(5, 3000, 9, surface, queries);
+  // k at and beyond the surface's size: every point, sorted.
+  ExpectTreeAnswersAt(surface, queries, { 4, 5, 9 });
   const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
   const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-  // k at and beyond the surface's size: every point, sorted.
-  for (int k : { 4, 5, 9 })
-  {
-    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
-  }
   // Without the surface's coordinates each query is searched on its own.
   std::vector<int> visits(ids.size(), 0);
   asmcore::ForEachKNearest(queries.data(), ids, nullptr, tree, 2,
@@ -221,10 +219,5 @@ TEST(BlockNeighbors, FarFromTheOriginAsTheTree)
       (*cloud)[i] = 1e7 * (i % 3 == 0 ? 1.0 : 2.0) + 1e-3 * (*cloud)[i];
     }
   }
-  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
-  const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-  for (int k : { 1, 8 })
-  {
-    ExpectTreeAnswers(queries, ids, surface, tree, k, Visit(queries, ids, surface, tree, k, {}));
-  }
+  ExpectTreeAnswersAt(surface, queries, { 1, 8 });
 }
