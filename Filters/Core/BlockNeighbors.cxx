@@ -170,7 +170,19 @@ void SearchBlock(const double* q, const Index* slots, Index m, const double* sur
     spread2 = std::max(spread2, TreeSquaredDistance(s.Queries.data() + 3 * j, c));
   }
   surface.KNearest(c, k, s.Near, s.NearSq);
-  const double reach = (std::sqrt(s.NearSq.back()) + 2.0 * std::sqrt(spread2)) * (1.0 + Slack);
+  const double reach = s.NearSq.empty()
+    ? std::numeric_limits<double>::quiet_NaN()
+    : (std::sqrt(s.NearSq.back()) + 2.0 * std::sqrt(spread2)) * (1.0 + Slack);
+  if (!std::isfinite(reach))
+  {
+    // Coordinates near the overflow (a centroid or a distance beyond the
+    // largest double): each query on its own.
+    for (Index j = 0; j < m; ++j)
+    {
+      SearchOne(slots[j], s.Queries.data() + 3 * j, surfaceXyz, surface, k, visit, s);
+    }
+    return;
+  }
   surface.Radius(c, reach, s.Candidates, s.CandidateSq);
   const std::size_t count = s.Candidates.size();
   s.CandidateXyz.resize(3 * count);
@@ -279,6 +291,21 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
   const double edge = BlockEdge * TypicalKthDistance(q, positions, surface, k);
   const Vec3Field queries(q);
   const Bounds bounds = ComputeBounds(queries, positions, execution);
+  if (!std::isfinite(bounds.MaxExtent()))
+  {
+    // An extent beyond the largest double has no grid: each query on its
+    // own, in the order of the list.
+    execution.Run(0, finite, [&](Index b, Index e) {
+      const KNearestVisit visit = makeVisit();
+      BlockScratch s;
+      for (Index j = b; j < e; ++j)
+      {
+        const Index i = positions[static_cast<std::size_t>(j)];
+        SearchOne(i, q + 3 * i, surfaceXyz, surface, k, visit, s);
+      }
+    });
+    return;
+  }
   CellGrid grid = BuildCellGrid(queries, positions, GridSpec::Make(bounds, edge), execution);
   const double perBlock = static_cast<double>(finite) / static_cast<double>(grid.NumberOfCells());
   if (perBlock >= MinQueriesPerBlock && perBlock < FullBlock)

@@ -136,12 +136,15 @@ GridSpec GridSpec::Make(const Bounds& bounds, double cellSize)
   GridSpec g;
   const double maxExtent = bounds.MaxExtent();
   // Smallest edge that keeps every axis within MaxDim cells (with a margin for
-  // rounding), and a positive edge for a cloud of coincident points.
+  // rounding), and a positive edge for a cloud of coincident points; never
+  // below the smallest normal double, whose inverse is finite (an extent of
+  // 1e-303 would give a subnormal edge, and 0 * (1 / edge) a NaN cell).
   double minSize = maxExtent / static_cast<double>(MaxDim - 2);
   if (!(minSize > 0.0))
   {
     minSize = std::max(std::abs(bounds.Min[0]), 1.0) * 1e-12;
   }
+  minSize = std::max(minSize, std::numeric_limits<double>::min());
   g.CellSize = (std::isfinite(cellSize) && cellSize > minSize) ? cellSize : minSize;
   for (int a = 0; a < 3; ++a)
   {

@@ -4,6 +4,7 @@
 // same order with the same squared distances, ties by id included, whatever
 // the order of the ids and the thread count.
 #include "Core/BlockNeighbors.h"
+#include "Core/Grid.h"
 #include "Core/Neighbors.h"
 
 #include "TestHelpers.h"
@@ -220,4 +221,40 @@ TEST(BlockNeighbors, FarFromTheOriginAsTheTree)
     }
   }
   ExpectTreeAnswersAt(surface, queries, { 1, 8 });
+}
+
+TEST(BlockNeighbors, ExtentsNearTheLimitsOfDoubles)
+{
+  // A cloud 1e-303 across (its grid's edge would be subnormal, and a cell's
+  // coordinate 0 * (1 / edge) a NaN), one whose extent overflows, and one
+  // whose blocks' centroids overflow: the tree's answers all the same.
+  for (const double scale : { 1e-305, 1e306, 2e307 })
+  {
+    Cloud surface, queries;
+    Sheet(300, 3000, 17, surface, queries);
+    for (Cloud* cloud : { &surface, &queries })
+    {
+      for (double& v : *cloud)
+      {
+        v *= scale;
+      }
+    }
+    if (scale == 1e306)
+    {
+      asmtest::Add(queries, -1.7e308, 0.0, 0.0); // (the extent overflows)
+      asmtest::Add(queries, 1.7e308, 0.0, 0.0);
+    }
+    ExpectTreeAnswersAt(surface, queries, { 1, 8 });
+  }
+  // The grid of such a cloud: a finite inverse edge, in range.
+  asmcore::Bounds tiny;
+  tiny.Valid = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    tiny.Min[a] = -2.3e-302;
+    tiny.Max[a] = tiny.Min[a] + 2e-303;
+  }
+  const asmcore::GridSpec spec = asmcore::GridSpec::Make(tiny, 0.0);
+  EXPECT_TRUE(std::isfinite(1.0 / spec.CellSize));
+  EXPECT_LE(spec.Dims[0], asmcore::GridSpec::MaxDim);
 }
