@@ -66,8 +66,8 @@ Quality Reference::Measure(const std::vector<double>& simplified, int planeNeigh
   const double scale = this->Diag > 0.0 ? 1.0 / this->Diag : 1.0;
 
   std::vector<double> toSamples, toPlane;
-  asmcore::SurfaceDistances(this->Xyz.data(), this->Ids, simplified.data(), sampleTree,
-    planeNeighbors, &toPlane, &toSamples, execution);
+  asmcore::SurfaceDistances(
+    this->Xyz.data(), this->Ids, sampleTree, planeNeighbors, &toPlane, &toSamples, execution);
   const std::vector<double> toOriginal =
     asmcore::NearestDistances(simplified.data(), sids, this->Tree, execution);
   q.NNRms = scale * std::sqrt(0.5 * (MeanSquare(toSamples) + MeanSquare(toOriginal)));

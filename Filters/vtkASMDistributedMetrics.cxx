@@ -161,7 +161,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   {
     std::vector<double> nearest, plane;
     asmcore::SurfaceDistances(
-      oxyz, owned, all.data(), simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
+      oxyz, owned, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
     result.OriginalToSimplified = Reduce(comm, nearest);
     result.PointToPlane = Reduce(comm, plane);
   }
@@ -179,8 +179,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   const asmcore::Neighbors localTree(oxyz, cloud.Ids(), execution);
   std::vector<double> nearest, plane;
   asmcore::SurfaceDistances(
-    all.data(), mineToMeasure, oxyz, localTree, options.PlaneNeighbors, &plane, &nearest,
-    execution);
+    all.data(), mineToMeasure, localTree, options.PlaneNeighbors, &plane, &nearest, execution);
   const std::size_t n = allIds.size();
   const int fields = curvatureNeighbors > 0 ? 4 : 2;
   std::vector<double> perPoint(fields * n, 0.0);

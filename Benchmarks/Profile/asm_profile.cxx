@@ -37,6 +37,7 @@
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
 #include "Core/CellSize.h"
+#include "Core/Curvature.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Neighbors.h"
@@ -198,6 +199,71 @@ std::vector<long> ParseList(const char* s)
   return v;
 }
 
+// The curvature's parts at the given positions, as vtkASMSimplify computes
+// it (the input's floats in place), one thread, best of 3: the tree over the
+// input, the k nearest alone, and the whole estimate.
+void TimeCurvature(
+  vtkPolyData* input, const std::vector<double>& positions, const std::vector<double>& normals)
+{
+  using namespace asmcore;
+  std::unique_ptr<double[]> copy;
+  asmcore::PointIds idList;
+  asmcore::IdView ids;
+  const Coordinates xyz =
+    asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids, false, true);
+  const Index nq = static_cast<Index>(positions.size() / 3);
+  double build = 1e9, knn = 1e9, all = 1e9;
+  Neighbors tree;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t0 = Cpu();
+    tree.Build(xyz, ids);
+    build = std::min(build, Cpu() - t0);
+  }
+  std::vector<Index> found;
+  std::vector<double> d2;
+  double check = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t0 = Cpu();
+    for (Index q = 0; q < nq; ++q)
+    {
+      tree.KNearest(positions.data() + 3 * q, DefaultCurvatureNeighbors, found, d2);
+      check += d2.back();
+    }
+    knn = std::min(knn, Cpu() - t0);
+  }
+  {
+    double g = 1e9;
+    std::vector<double> local(3 * DefaultCurvatureNeighbors);
+    for (int r = 0; r < 3; ++r)
+    {
+      const double t0 = Cpu();
+      for (Index q = 0; q < nq; ++q)
+      {
+        tree.KNearest(positions.data() + 3 * q, DefaultCurvatureNeighbors, found, d2);
+        for (std::size_t j = 0; j < found.size(); ++j)
+          xyz.Get(found[j], local.data() + 3 * j);
+        check += local[5];
+      }
+      g = std::min(g, Cpu() - t0);
+    }
+    std::printf("    knn + gather %.1f ms\n", 1e3 * g);
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t0 = Cpu();
+    const auto estimates = EstimateCurvature(
+      xyz, ids, tree, positions.data(), nq, normals.data(), DefaultCurvatureNeighbors, {});
+    all = std::min(all, Cpu() - t0);
+    check += estimates.empty() ? 0.0 : estimates[0].SurfaceVariation;
+  }
+  std::printf("    curvature at %lld positions, best of 3: tree %.1f ms, %d nearest %.1f ms "
+              "(%.2f us each), estimates with their queries %.1f ms (check %g)\n",
+    (long long)nq, 1e3 * build, DefaultCurvatureNeighbors, 1e3 * knn, 1e6 * knn / std::max<Index>(nq, 1),
+    1e3 * all, check);
+}
+
 // The core's stages one by one, one thread (mirrors asmcore::Simplify).
 void TimeStages(vtkPolyData* input, double fraction, int mode)
 {
@@ -263,6 +329,7 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   std::printf("    (sampling, assembly, output arrays: the rest of the end-to-end time)\n");
   // Share of asmcore::Simplify's CPU time spent inside Execution loops (what
   // a second thread can share): an Amdahl bound robust to a loaded machine.
+  std::vector<double> positions, normals;
   {
     double inside = 0.0;
     asmcore::Execution counting;
@@ -283,15 +350,13 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
     const double total = Cpu() - c0;
     std::printf("    asmcore::Simplify %.1f ms, %.1f %% of it in parallel loops: 2-thread bound %.2fx\n",
       1e3 * total, 100.0 * inside / total, 1.0 / ((total - inside) / total + 0.5 * inside / total));
+    for (const Sample& s : result.Samples)
+    {
+      positions.insert(positions.end(), s.Position, s.Position + 3);
+      normals.insert(normals.end(), s.Normal, s.Normal + 3);
+    }
   }
-  double kd = 1e9;
-  for (int r = 0; r < 3; ++r)
-  {
-    const double t9 = Cpu();
-    Neighbors tree(xyz, ids);
-    kd = std::min(kd, Cpu() - t9);
-  }
-  std::printf("    kd-tree build (curvature), best of 3 %8.1f ms\n", 1e3 * kd);
+  TimeCurvature(input, positions, normals);
 }
 
 // The floor of a grid simplifier with a target count, on this input (its

@@ -130,25 +130,17 @@ struct BlockScratch
 };
 
 // The direct search of one query, and its visit.
-void SearchOne(Index query, const double* p, const double* surfaceXyz, const Neighbors& surface,
-  int k, const KNearestVisit& visit, BlockScratch& s)
+void SearchOne(Index query, const double* p, const Neighbors& surface, int k,
+  const KNearestVisit& visit, BlockScratch& s)
 {
-  surface.KNearest(p, k, s.Ids, s.Sq);
-  if (surfaceXyz)
-  {
-    s.NearXyz.resize(3 * s.Ids.size());
-    for (std::size_t j = 0; j < s.Ids.size(); ++j)
-    {
-      CopyPoint(surfaceXyz + 3 * s.Ids[j], s.NearXyz.data() + 3 * j);
-    }
-  }
-  visit(KNearestAnswer{ query, p, s.Ids, s.Sq, surfaceXyz ? s.NearXyz.data() : nullptr });
+  surface.KNearest(p, k, s.Ids, s.Sq, s.NearXyz);
+  visit(KNearestAnswer{ query, p, s.Ids, s.Sq, s.NearXyz.data() });
 }
 
 // The queries `slots` of one block: one k-nearest and one radius search
 // around their centroid, then each query among the candidates.
-void SearchBlock(const double* q, const Index* slots, Index m, const double* surfaceXyz,
-  const Neighbors& surface, int k, const KNearestVisit& visit, BlockScratch& s)
+void SearchBlock(const double* q, const Index* slots, Index m, const Neighbors& surface, int k,
+  const KNearestVisit& visit, BlockScratch& s)
 {
   s.Queries.resize(static_cast<std::size_t>(3 * m));
   double c[3] = { 0.0, 0.0, 0.0 };
@@ -179,17 +171,15 @@ void SearchBlock(const double* q, const Index* slots, Index m, const double* sur
     // largest double): each query on its own.
     for (Index j = 0; j < m; ++j)
     {
-      SearchOne(slots[j], s.Queries.data() + 3 * j, surfaceXyz, surface, k, visit, s);
+      SearchOne(slots[j], s.Queries.data() + 3 * j, surface, k, visit, s);
     }
     return;
   }
-  surface.Radius(c, reach, s.Candidates, s.CandidateSq);
+  surface.Radius(c, reach, s.Candidates, s.CandidateSq, s.CandidateXyz);
   const std::size_t count = s.Candidates.size();
-  s.CandidateXyz.resize(3 * count);
   s.CandidateReach.resize(count);
   for (std::size_t j = 0; j < count; ++j)
   {
-    CopyPoint(surfaceXyz + 3 * s.Candidates[j], s.CandidateXyz.data() + 3 * j);
     s.CandidateReach[j] = std::sqrt(s.CandidateSq[j]);
   }
   for (Index j = 0; j < m; ++j)
@@ -216,7 +206,7 @@ void SearchBlock(const double* q, const Index* slots, Index m, const double* sur
     if (!s.Best.Full())
     {
       // (Cannot happen: c's own k nearest are candidates. Kept exact anyway.)
-      SearchOne(slots[j], p, surfaceXyz, surface, k, visit, s);
+      SearchOne(slots[j], p, surface, k, visit, s);
       continue;
     }
     s.NearXyz.resize(static_cast<std::size_t>(3 * k));
@@ -229,15 +219,15 @@ void SearchBlock(const double* q, const Index* slots, Index m, const double* sur
 }
 } // namespace
 
-void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
-  const Neighbors& surface, int k, const KNearestVisit& visit, const Execution& execution)
+void ForEachKNearest(const double* xyz, IdView ids, const Neighbors& surface, int k,
+  const KNearestVisit& visit, const Execution& execution)
 {
   ForEachKNearest(
-    xyz, ids, surfaceXyz, surface, k, [&visit]() { return visit; }, execution);
+    xyz, ids, surface, k, [&visit]() { return visit; }, execution);
 }
 
-void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
-  const Neighbors& surface, int k, const KNearestVisitMaker& makeVisit, const Execution& execution)
+void ForEachKNearest(const double* xyz, IdView ids, const Neighbors& surface, int k,
+  const KNearestVisitMaker& makeVisit, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   if (n == 0 || k <= 0 || surface.Empty())
@@ -301,7 +291,7 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
       for (Index j = b; j < e; ++j)
       {
         const Index i = positions[static_cast<std::size_t>(j)];
-        SearchOne(i, q + 3 * i, surfaceXyz, surface, k, visit, s);
+        SearchOne(i, q + 3 * i, surface, k, visit, s);
       }
     });
     return;
@@ -316,7 +306,7 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
     grid = BuildCellGrid(queries, positions, GridSpec::Make(bounds, edge * wider), execution);
   }
   const Index cells = grid.NumberOfCells();
-  const bool blocks = surfaceXyz && surface.Size() > k &&
+  const bool blocks = surface.Size() > k &&
     static_cast<double>(finite) >= MinQueriesPerBlock * static_cast<double>(cells);
   execution.Run(0, cells, [&](Index b, Index e) {
     const KNearestVisit visit = makeVisit();
@@ -327,12 +317,12 @@ void ForEachKNearest(const double* xyz, IdView ids, const double* surfaceXyz,
       const Index m = grid.CellSizeOf(c);
       if (blocks)
       {
-        SearchBlock(q, slots, m, surfaceXyz, surface, k, visit, s);
+        SearchBlock(q, slots, m, surface, k, visit, s);
         continue;
       }
       for (Index j = 0; j < m; ++j)
       {
-        SearchOne(slots[j], q + 3 * slots[j], surfaceXyz, surface, k, visit, s);
+        SearchOne(slots[j], q + 3 * slots[j], surface, k, visit, s);
       }
     }
   });

@@ -35,14 +35,14 @@ class Neighbors;
 
 /// What a query's visit receives: its position in the query list, its
 /// point, and its nearest points (ids sorted by squared distance, then id;
-/// their coordinates side by side, 3 per id, when the surface's are given).
+/// their coordinates side by side, 3 per id, from the tree's own copies).
 struct KNearestAnswer
 {
   Index Query;
   const double* Point;
   const std::vector<Index>& Ids;
   const std::vector<double>& SqDist;
-  const double* Xyz; ///< (null without the surface's coordinates)
+  const double* Xyz;
 };
 /// Called once per query with a finite point.
 using KNearestVisit = std::function<void(const KNearestAnswer&)>;
@@ -52,18 +52,15 @@ using KNearestVisitMaker = std::function<KNearestVisit()>;
 
 /// For each position i of `ids` whose point xyz[3 * ids[i]] is finite: a
 /// visit (Query i) with the min(k, surface.Size()) points of `surface` nearest
-/// it, exactly as surface.KNearest gives them. `surfaceXyz` holds the
-/// surface's points (surfaceXyz[3 * id] for the ids the tree reports);
-/// without it (null) every query is searched on its own. The
-/// visits run on `execution`'s threads, in no fixed order; each query is
-/// visited once, and what a visit receives does not depend on the thread
-/// count. k <= 0 or an empty surface: no visit.
+/// it, exactly as surface.KNearest gives them. The visits run on
+/// `execution`'s threads, in no fixed order; each query is visited once,
+/// and what a visit receives does not depend on the thread count. k <= 0 or
+/// an empty surface: no visit.
 VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids,
-  const double* surfaceXyz, const Neighbors& surface, int k, const KNearestVisit& visit,
-  const Execution& execution = {});
+  const Neighbors& surface, int k, const KNearestVisit& visit, const Execution& execution = {});
 /// The same, each range of blocks with a visit of its own from `makeVisit`.
 VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids,
-  const double* surfaceXyz, const Neighbors& surface, int k, const KNearestVisitMaker& makeVisit,
+  const Neighbors& surface, int k, const KNearestVisitMaker& makeVisit,
   const Execution& execution = {});
 } // namespace asmcore
 

@@ -150,16 +150,17 @@ std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
   }
 
   auto body = [&](Index begin, Index end) {
-    std::vector<Index> neighbors; // reused by the queries of this range
+    // Reused by the queries of this range. The neighbours' coordinates come
+    // from the tree (the same numbers as the cloud's, widened for a float
+    // cloud), side by side: no gather from a cloud in random order.
+    std::vector<Index> neighbors;
     std::vector<double> sqDist;
-    // Float coordinates: each query's neighbours widened into a local copy
-    // (the same numbers in the same order as a double copy of the cloud).
     std::vector<double> local;
     std::vector<Index> localIds;
     for (Index i = begin; i < end; ++i)
     {
       const double* q = queries + 3 * i;
-      tree.KNearest(q, k, neighbors, sqDist);
+      tree.KNearest(q, k, neighbors, sqDist, local);
       double away[3];
       const double* orient = orientNormals ? orientNormals + 3 * i : away;
       for (int a = 0; a < 3; ++a)
@@ -167,18 +168,9 @@ std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
         away[a] = q[a] - centroid[a];
       }
       const auto count = static_cast<Index>(neighbors.size());
-      if (xyz.Doubles)
+      for (auto j = static_cast<Index>(localIds.size()); j < count; ++j)
       {
-        estimates[static_cast<std::size_t>(i)] =
-          EstimateCurvatureAt(xyz.Doubles, neighbors.data(), count, q, orient);
-        continue;
-      }
-      local.resize(static_cast<std::size_t>(3 * count));
-      localIds.resize(static_cast<std::size_t>(count));
-      for (Index j = 0; j < count; ++j)
-      {
-        xyz.Get(neighbors[j], local.data() + 3 * j);
-        localIds[j] = j;
+        localIds.push_back(j);
       }
       estimates[static_cast<std::size_t>(i)] =
         EstimateCurvatureAt(local.data(), localIds.data(), count, q, orient);

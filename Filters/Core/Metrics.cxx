@@ -208,9 +208,8 @@ private:
 };
 } // namespace
 
-void SurfaceDistances(const double* xyz, IdView ids, const double* surfaceXyz,
-  const Neighbors& surface, int k, std::vector<double>* plane, std::vector<double>* nearest,
-  const Execution& execution)
+void SurfaceDistances(const double* xyz, IdView ids, const Neighbors& surface, int k,
+  std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution)
 {
   const double infinity = std::numeric_limits<double>::infinity();
   for (std::vector<double>* d : { plane, nearest })
@@ -239,22 +238,22 @@ void SurfaceDistances(const double* xyz, IdView ids, const double* surfaceXyz,
       }
     };
   };
-  ForEachKNearest(xyz, ids, surfaceXyz, surface, k, makeVisit, execution);
+  ForEachKNearest(xyz, ids, surface, k, makeVisit, execution);
 }
 
 std::vector<double> NearestDistances(
   const double* xyz, IdView ids, const Neighbors& target, const Execution& execution)
 {
   std::vector<double> d;
-  SurfaceDistances(xyz, ids, nullptr, target, 1, nullptr, &d, execution);
+  SurfaceDistances(xyz, ids, target, 1, nullptr, &d, execution);
   return d;
 }
 
 std::vector<double> PointToPlaneDistances(const double* xyz, IdView ids,
-  const double* surfaceXyz, const Neighbors& surface, int k, const Execution& execution)
+  const Neighbors& surface, int k, const Execution& execution)
 {
   std::vector<double> d;
-  SurfaceDistances(xyz, ids, surfaceXyz, surface, k, &d, nullptr, execution);
+  SurfaceDistances(xyz, ids, surface, k, &d, nullptr, execution);
   return d;
 }
 
@@ -360,7 +359,7 @@ Comparison CompareClouds(const double* xyz, IdView ids,
   // simplified point's distance to the original surface; each direction in
   // one pass of k-nearest queries.
   std::vector<double> plane, nearest;
-  SurfaceDistances(xyz, ids, sxyz, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
+  SurfaceDistances(xyz, ids, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
   result.PointToPlane = Summarize(plane);
   result.OriginalToSimplified = Summarize(nearest);
   if (execution.Report(0.8))
@@ -368,7 +367,7 @@ Comparison CompareClouds(const double* xyz, IdView ids,
     result.Aborted = true;
     return result;
   }
-  SurfaceDistances(sxyz, sids, xyz, originalTree, options.PlaneNeighbors, &result.SimplifiedError,
+  SurfaceDistances(sxyz, sids, originalTree, options.PlaneNeighbors, &result.SimplifiedError,
     &nearest, execution);
   result.SimplifiedToOriginal = Summarize(nearest);
   result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);

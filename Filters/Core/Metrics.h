@@ -50,22 +50,20 @@ VTKASMFILTERS_EXPORT std::vector<double> NearestDistances(const double* xyz,
   IdView ids, const Neighbors& target, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids: the distance to the plane fitted
-/// (PCA) to its k nearest points of the cloud `surfaceXyz` indexed by
-/// `surface`; the distance to the nearest point when fewer than 3 points
-/// are found.
+/// (PCA) to its k nearest points of the cloud indexed by `surface`; the
+/// distance to the nearest point when fewer than 3 points are found.
 VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz,
-  IdView ids, const double* surfaceXyz, const Neighbors& surface, int k,
-  const Execution& execution = {});
+  IdView ids, const Neighbors& surface, int k, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids, from its k nearest points of the
-/// cloud `surfaceXyz` indexed by `surface` (one query each): in `plane`
+/// cloud indexed by `surface` (one query each): in `plane`
 /// what PointToPlaneDistances gives, in `nearest` what NearestDistances
 /// gives (either may be null; resized to ids.size()). The queries are made
 /// in blocks of nearby points (ForEachKNearest, BlockNeighbors.h), whatever
 /// the order of the points; each answer is the same as alone.
 VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids,
-  const double* surfaceXyz, const Neighbors& surface, int k, std::vector<double>* plane,
-  std::vector<double>* nearest, const Execution& execution = {});
+  const Neighbors& surface, int k, std::vector<double>* plane, std::vector<double>* nearest,
+  const Execution& execution = {});
 
 /// Parameters of CompareClouds.
 struct VTKASMFILTERS_EXPORT ComparisonOptions

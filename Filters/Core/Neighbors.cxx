@@ -29,48 +29,96 @@ inline bool Finite(const double p[3])
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
-// Result sets of the search. Each says whether an entry (d, id) would enter
-// the result (Accepts) and whether a subtree whose points are at squared
-// distance >= rd and have ids >= minId may hold such an entry (Visit).
+// Result sets of the search, over the entries of one layout. Each says
+// whether an entry (d, id) would enter the result (Accepts) and whether a
+// subtree whose points are at squared distance >= rd and have ids >= minId
+// may hold such an entry (Visit); Add takes the entry itself, so that the
+// answer can give its coordinates (the tree's copy: no read of the caller's
+// cloud, whose order may be random).
 
-// The k best entries, kept sorted by insertion into the caller's arrays:
+// The k best entries, kept sorted by insertion into arrays of the caller:
 // fastest for the small k of neighbourhood queries.
+template <typename Entry>
 class SortedKnn
 {
 public:
-  SortedKnn(int k, Index* ids, double* d)
+  SortedKnn(int k, double* d, const Entry** entries)
     : K(k)
-    , Ids(ids)
     , D(d)
+    , E(entries)
   {
   }
   bool Accepts(double d, Index id) const
   {
     return this->Count < this->K ||
-      NeighborPrecedes(d, id, this->D[this->K - 1], this->Ids[this->K - 1]);
+      NeighborPrecedes(d, id, this->D[this->K - 1], this->E[this->K - 1]->Id);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
-  void Add(double d, Index id)
+  void Add(double d, const Entry& entry)
   {
     int i = this->Count < this->K ? this->Count++ : this->K - 1;
-    while (i > 0 && NeighborPrecedes(d, id, this->D[i - 1], this->Ids[i - 1]))
+    // Past the farther entries, then past the as near ones of larger id
+    // (rare: the second loop reads ids only on exact ties).
+    while (i > 0 && d < this->D[i - 1])
     {
       this->D[i] = this->D[i - 1];
-      this->Ids[i] = this->Ids[i - 1];
+      this->E[i] = this->E[i - 1];
+      --i;
+    }
+    while (i > 0 && d == this->D[i - 1] && entry.Id < this->E[i - 1]->Id)
+    {
+      this->D[i] = this->D[i - 1];
+      this->E[i] = this->E[i - 1];
       --i;
     }
     this->D[i] = d;
-    this->Ids[i] = id;
+    this->E[i] = &entry;
+  }
+  /// Offers every entry of [first, last): the first K fill the result,
+  /// the others are compared with the current k-th, kept in registers.
+  void Scan(const Entry* first, const Entry* last, const double p[3])
+  {
+    for (; first != last && this->Count < this->K; ++first)
+    {
+      this->Add(SquaredDistance(first->P, p), *first);
+    }
+    if (first == last)
+    {
+      return;
+    }
+    double bound = this->D[this->K - 1];
+    Index boundId = this->E[this->K - 1]->Id;
+    for (; first != last; ++first)
+    {
+      const double d = SquaredDistance(first->P, p);
+      if (d <= bound && NeighborPrecedes(d, first->Id, bound, boundId))
+      {
+        this->Add(d, *first);
+        bound = this->D[this->K - 1];
+        boundId = this->E[this->K - 1]->Id;
+      }
+    }
   }
   int Count = 0;
 
 private:
   int K;
-  Index* Ids;
   double* D;
+  const Entry** E;
+};
+
+// One entry of an answer, ordered by (squared distance, id).
+template <typename Entry>
+struct Found
+{
+  double D;
+  Index Id;
+  const Entry* E;
+  bool operator<(const Found& other) const { return NeighborPrecedes(D, Id, other.D, other.Id); }
 };
 
 // The k best entries in a max-heap on (d, id): for large k.
+template <typename Entry>
 class HeapKnn
 {
 public:
@@ -81,26 +129,40 @@ public:
   }
   bool Accepts(double d, Index id) const
   {
-    return this->Heap.size() < this->K || std::make_pair(d, id) < this->Heap.front();
+    return this->Heap.size() < this->K ||
+      NeighborPrecedes(d, id, this->Heap.front().D, this->Heap.front().Id);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
-  void Add(double d, Index id)
+  void Add(double d, const Entry& entry)
   {
     if (this->Heap.size() == this->K)
     {
       std::pop_heap(this->Heap.begin(), this->Heap.end());
       this->Heap.pop_back();
     }
-    this->Heap.emplace_back(d, id);
+    this->Heap.push_back({ d, entry.Id, &entry });
     std::push_heap(this->Heap.begin(), this->Heap.end());
   }
-  std::vector<std::pair<double, Index>> Heap;
+  /// Offers every entry of [first, last).
+  void Scan(const Entry* first, const Entry* last, const double p[3])
+  {
+    for (; first != last; ++first)
+    {
+      const double d = SquaredDistance(first->P, p);
+      if (this->Accepts(d, first->Id))
+      {
+        this->Add(d, *first);
+      }
+    }
+  }
+  std::vector<Found<Entry>> Heap;
 
 private:
   std::size_t K;
 };
 
 // Every entry within squared distance R2.
+template <typename Entry>
 class RadiusSet
 {
 public:
@@ -110,31 +172,84 @@ public:
   }
   bool Accepts(double d, Index) const { return d <= this->R2; }
   bool Visit(double rd, Index) const { return rd <= this->R2; }
-  void Add(double d, Index id) { this->Found.emplace_back(d, id); }
-  std::vector<std::pair<double, Index>> Found;
+  void Add(double d, const Entry& entry) { this->Hits.push_back({ d, entry.Id, &entry }); }
+  /// Offers every entry of [first, last).
+  void Scan(const Entry* first, const Entry* last, const double p[3])
+  {
+    for (; first != last; ++first)
+    {
+      const double d = SquaredDistance(first->P, p);
+      if (this->Accepts(d, first->Id))
+      {
+        this->Add(d, *first);
+      }
+    }
+  }
+  std::vector<Found<Entry>> Hits;
 
 private:
   double R2;
 };
 
-void Unzip(std::vector<std::pair<double, Index>>& pairs, std::vector<Index>& ids,
-  std::vector<double>* sqDist)
+// Where an answer goes: ids, and optionally squared distances and
+// coordinates (3 per id, widened to double).
+struct Answer
 {
-  std::sort(pairs.begin(), pairs.end());
-  ids.resize(pairs.size());
-  for (std::size_t i = 0; i < pairs.size(); ++i)
+  std::vector<Index>& Ids;
+  std::vector<double>* SqDist;
+  std::vector<double>* Xyz;
+
+  void Clear() const
   {
-    ids[i] = pairs[i].second;
-  }
-  if (sqDist)
-  {
-    sqDist->resize(pairs.size());
-    for (std::size_t i = 0; i < pairs.size(); ++i)
+    this->Ids.clear();
+    if (this->SqDist)
     {
-      (*sqDist)[i] = pairs[i].first;
+      this->SqDist->clear();
+    }
+    if (this->Xyz)
+    {
+      this->Xyz->clear();
     }
   }
-}
+  /// The n entries e(i), with their squared distances d(i).
+  template <typename EntryAt, typename DistanceAt>
+  void Write(std::size_t n, const EntryAt& e, const DistanceAt& d) const
+  {
+    this->Ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->Ids[i] = e(i)->Id;
+    }
+    if (this->SqDist)
+    {
+      this->SqDist->resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        (*this->SqDist)[i] = d(i);
+      }
+    }
+    if (this->Xyz)
+    {
+      this->Xyz->resize(3 * n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          (*this->Xyz)[3 * i + a] = static_cast<double>(e(i)->P[a]);
+        }
+      }
+    }
+  }
+  /// Found entries in any order: sorted, then written.
+  template <typename Entry>
+  void Write(std::vector<Found<Entry>>& found) const
+  {
+    std::sort(found.begin(), found.end());
+    this->Write(
+      found.size(), [&](std::size_t i) { return found[i].E; },
+      [&](std::size_t i) { return found[i].D; });
+  }
+};
 } // namespace
 
 template <typename E>
@@ -172,18 +287,11 @@ void BasicNeighbors<E>::SearchNode(
       const double d = SquaredDistance(first->P, p);
       for (; first != last && result.Accepts(d, first->Id); ++first)
       {
-        result.Add(d, first->Id);
+        result.Add(d, *first);
       }
       return;
     }
-    for (; first != last; ++first)
-    {
-      const double d = SquaredDistance(first->P, p);
-      if (result.Accepts(d, first->Id))
-      {
-        result.Add(d, first->Id);
-      }
-    }
+    result.Scan(first, last, p);
     return;
   }
 
@@ -213,11 +321,10 @@ namespace
 {
 // The queries, on a tree of either layout.
 template <typename Tree>
-void KNearestIn(const Tree& tree, const double p[3], int k, std::vector<Index>& ids,
-  std::vector<double>& sqDist)
+void KNearestIn(const Tree& tree, const double p[3], int k, const Answer& answer)
 {
-  ids.clear();
-  sqDist.clear();
+  using Entry = typename Tree::Entry;
+  answer.Clear();
   if (k <= 0 || tree.Empty() || !Finite(p))
   {
     return;
@@ -226,69 +333,77 @@ void KNearestIn(const Tree& tree, const double p[3], int k, std::vector<Index>& 
   {
     // Every point: no tree needed.
     const auto& entries = tree.Entries();
-    std::vector<std::pair<double, Index>> all(entries.size());
+    std::vector<Found<Entry>> all(entries.size());
     for (std::size_t i = 0; i < all.size(); ++i)
     {
-      all[i] = { SquaredDistance(entries[i].P, p), entries[i].Id };
+      all[i] = { SquaredDistance(entries[i].P, p), entries[i].Id, &entries[i] };
     }
-    Unzip(all, ids, &sqDist);
+    answer.Write(all);
     return;
   }
   if (k <= 32)
   {
-    ids.resize(static_cast<std::size_t>(k));
-    sqDist.resize(static_cast<std::size_t>(k));
-    SortedKnn result(k, ids.data(), sqDist.data());
-    tree.Search(p, result);
-    return; // k < Size(): the result is full
+    double d[32];
+    const Entry* e[32];
+    SortedKnn<Entry> result(k, d, e);
+    tree.Search(p, result); // k < Size(): the result is full
+    answer.Write(
+      static_cast<std::size_t>(k), [&](std::size_t i) { return e[i]; },
+      [&](std::size_t i) { return d[i]; });
+    return;
   }
-  HeapKnn result(k);
+  HeapKnn<Entry> result(k);
   tree.Search(p, result);
-  Unzip(result.Heap, ids, &sqDist);
+  answer.Write(result.Heap);
 }
 
 template <typename Tree>
 NearestPoint NearestIn(const Tree& tree, const double p[3])
 {
+  using Entry = typename Tree::Entry;
   NearestPoint nearest;
   nearest.Distance = std::numeric_limits<double>::infinity();
   if (tree.Empty() || !Finite(p))
   {
     return nearest;
   }
-  Index id = -1;
   double d = 0.0;
-  SortedKnn result(1, &id, &d);
+  const Entry* e = nullptr;
+  SortedKnn<Entry> result(1, &d, &e);
   tree.Search(p, result);
-  nearest.Id = id;
+  nearest.Id = e->Id;
   nearest.Distance = std::sqrt(d);
   return nearest;
 }
 
 template <typename Tree>
-void RadiusIn(const Tree& tree, const double p[3], double r, std::vector<Index>& ids,
-  std::vector<double>* sqDist)
+void RadiusIn(const Tree& tree, const double p[3], double r, const Answer& answer)
 {
-  ids.clear();
-  if (sqDist)
-  {
-    sqDist->clear();
-  }
+  answer.Clear();
   if (tree.Empty() || !Finite(p) || !(r >= 0.0) || !std::isfinite(r))
   {
     return;
   }
-  RadiusSet result(r * r);
+  RadiusSet<typename Tree::Entry> result(r * r);
   tree.Search(p, result);
-  Unzip(result.Found, ids, sqDist);
+  answer.Write(result.Hits);
 }
 } // namespace
 
 void Neighbors::KNearest(
   const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->HasCompactLayout() ? KNearestIn(this->Compact, p, k, ids, sqDist)
-                  : KNearestIn(this->Wide, p, k, ids, sqDist);
+  const Answer answer{ ids, &sqDist, nullptr };
+  this->HasCompactLayout() ? KNearestIn(this->Compact, p, k, answer)
+                           : KNearestIn(this->Wide, p, k, answer);
+}
+
+void Neighbors::KNearest(const double p[3], int k, std::vector<Index>& ids,
+  std::vector<double>& sqDist, std::vector<double>& xyz) const
+{
+  const Answer answer{ ids, &sqDist, &xyz };
+  this->HasCompactLayout() ? KNearestIn(this->Compact, p, k, answer)
+                           : KNearestIn(this->Wide, p, k, answer);
 }
 
 NearestPoint Neighbors::Nearest(const double p[3]) const
@@ -298,14 +413,24 @@ NearestPoint Neighbors::Nearest(const double p[3]) const
 
 void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids) const
 {
-  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, ids, nullptr)
-                  : RadiusIn(this->Wide, p, r, ids, nullptr);
+  const Answer answer{ ids, nullptr, nullptr };
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, answer)
+                           : RadiusIn(this->Wide, p, r, answer);
 }
 
 void Neighbors::Radius(
   const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const
 {
-  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, ids, &sqDist)
-                  : RadiusIn(this->Wide, p, r, ids, &sqDist);
+  const Answer answer{ ids, &sqDist, nullptr };
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, answer)
+                           : RadiusIn(this->Wide, p, r, answer);
+}
+
+void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids,
+  std::vector<double>& sqDist, std::vector<double>& xyz) const
+{
+  const Answer answer{ ids, &sqDist, &xyz };
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, answer)
+                           : RadiusIn(this->Wide, p, r, answer);
 }
 } // namespace asmcore

@@ -196,6 +196,12 @@ public:
   void KNearest(
     const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist) const;
 
+  /// Same, and the points' coordinates in `xyz` (3 per id, side by side):
+  /// the tree's own copies, the same numbers as the cloud's (a float
+  /// cloud's widened), read without touching the cloud.
+  void KNearest(const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist,
+    std::vector<double>& xyz) const;
+
   /// The point nearest p (ties: the smaller id).
   NearestPoint Nearest(const double p[3]) const;
 
@@ -206,6 +212,9 @@ public:
   /// Same, with the squared distances.
   void Radius(
     const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist) const;
+  /// Same, with the squared distances and the coordinates (as KNearest).
+  void Radius(const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist,
+    std::vector<double>& xyz) const;
 
 private:
   BasicNeighbors<WideEntry> Wide;

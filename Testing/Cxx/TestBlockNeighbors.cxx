@@ -38,7 +38,7 @@ std::vector<Answer> Visit(const Cloud& queries, asmcore::IdView ids, const Cloud
   std::vector<Answer> answers(ids.size());
   std::mutex mutex;
   asmcore::ForEachKNearest(
-    queries.data(), ids, surface.data(), tree, k,
+    queries.data(), ids, tree, k,
     [&](const asmcore::KNearestAnswer& answer) {
       std::lock_guard<std::mutex> lock(mutex);
       Answer& a = answers[static_cast<std::size_t>(answer.Query)];
@@ -181,7 +181,7 @@ TEST(BlockNeighbors, TiesAreBrokenByIdAsInTheTree)
   ExpectTreeAnswersAt(surface, queries, { 2, 5, 8 });
 }
 
-TEST(BlockNeighbors, SmallSurfacesAndNoCoordinates)
+TEST(BlockNeighbors, SmallSurfaces)
 {
   Cloud surface, queries;
   Sheet(5, 3000, 9, surface, queries);
@@ -189,20 +189,11 @@ TEST(BlockNeighbors, SmallSurfacesAndNoCoordinates)
   ExpectTreeAnswersAt(surface, queries, { 4, 5, 9 });
   const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
   const auto ids = asmcore::IdView::Identity(queries.size() / 3);
-  // Without the surface's coordinates each query is searched on its own.
-  std::vector<int> visits(ids.size(), 0);
-  asmcore::ForEachKNearest(queries.data(), ids, nullptr, tree, 2,
-    [&](const asmcore::KNearestAnswer& answer) {
-      ++visits[static_cast<std::size_t>(answer.Query)];
-      EXPECT_EQ(2u, answer.Ids.size());
-      EXPECT_EQ(nullptr, answer.Xyz);
-    });
-  EXPECT_EQ(std::vector<int>(ids.size(), 1), visits);
   // No visit: k <= 0, an empty surface.
   int none = 0;
   auto count = [&](const asmcore::KNearestAnswer&) { ++none; };
-  asmcore::ForEachKNearest(queries.data(), ids, surface.data(), tree, 0, count);
-  asmcore::ForEachKNearest(queries.data(), ids, surface.data(), asmcore::Neighbors(), 3, count);
+  asmcore::ForEachKNearest(queries.data(), ids, tree, 0, count);
+  asmcore::ForEachKNearest(queries.data(), ids, asmcore::Neighbors(), 3, count);
   EXPECT_EQ(0, none);
 }
 

@@ -324,12 +324,11 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
   const asmcore::Neighbors tree(surface.data(), sids);
   const int k = 8;
   std::vector<double> plane, nearest;
-  asmcore::SurfaceDistances(
-    queries.data(), qids, surface.data(), tree, k, &plane, &nearest, UnevenTwoThreads());
+  asmcore::SurfaceDistances(queries.data(), qids, tree, k, &plane, &nearest, UnevenTwoThreads());
   ASSERT_EQ(qids.size(), plane.size());
   ASSERT_EQ(qids.size(), nearest.size());
   EXPECT_EQ(nearest, asmcore::NearestDistances(queries.data(), qids, tree));
-  EXPECT_EQ(plane, asmcore::PointToPlaneDistances(queries.data(), qids, surface.data(), tree, k));
+  EXPECT_EQ(plane, asmcore::PointToPlaneDistances(queries.data(), qids, tree, k));
   double worst = 0.0;
   for (std::size_t i = 0; i < qids.size(); ++i)
   {

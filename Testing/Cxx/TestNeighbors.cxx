@@ -55,6 +55,20 @@ void ExpectSame(const Ranked& expected, asmcore::IdView ids,
   }
 }
 
+// The coordinates an answer gives are those of its ids, side by side.
+void ExpectCoordinates(const Cloud& c, const std::vector<Index>& ids,
+  const std::vector<double>& xyz, const std::string& what)
+{
+  ASSERT_EQ(3 * ids.size(), xyz.size()) << what;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      ASSERT_EQ(c[3 * ids[i] + a], xyz[3 * i + a]) << what << " rank " << i;
+    }
+  }
+}
+
 // A test cloud: `unique` random points (uniform in [0, 1]^3, or on the
 // integer lattice [0, 4]^3 when `lattice`, which makes many exact ties),
 // plus `duplicates` copies of random earlier points. The ids used are a
@@ -226,7 +240,8 @@ TEST(Neighbors, RadiusMatchesBruteForce)
 
 // A float cloud (ids below 2^31) gets the compact layout, 16 bytes per
 // point: it must answer exactly what the wide layout answers on the same
-// numbers as doubles (the brute force included).
+// numbers as doubles (the brute force included). Both give the points'
+// coordinates on request: the cloud's numbers (the floats widened).
 TEST(Neighbors, FloatCloudsGetTheCompactLayoutWithTheSameAnswers)
 {
   unsigned seed = 301;
@@ -246,8 +261,20 @@ TEST(Neighbors, FloatCloudsGetTheCompactLayoutWithTheSameAnswers)
       ASSERT_TRUE(compact.HasCompactLayout());
       ASSERT_FALSE(wide.HasCompactLayout());
       ASSERT_EQ(compact.Size(), wide.Size());
-      std::vector<Index> ids, wideIds;
-      std::vector<double> d, wideD;
+      std::vector<Index> ids, wideIds, withXyz;
+      std::vector<double> d, wideD, xyz;
+      // Both layouts: the same ids and distances with the coordinates as
+      // without, and the coordinates of those ids.
+      auto expectCoordinates = [&](auto query, const std::string& what) {
+        for (const asmcore::Neighbors* tree : { &compact, &wide })
+        {
+          query(*tree, ids, d, nullptr);
+          query(*tree, withXyz, wideD, &xyz);
+          ASSERT_EQ(ids, withXyz) << what;
+          ASSERT_EQ(d, wideD) << what;
+          ExpectCoordinates(t.Points, ids, xyz, what);
+        }
+      };
       for (auto q : MakeQueries(t, lattice, seed))
       {
         for (double& x : q)
@@ -263,6 +290,12 @@ TEST(Neighbors, FloatCloudsGetTheCompactLayoutWithTheSameAnswers)
             what + " k=" + std::to_string(k));
           ASSERT_EQ(wideIds, ids) << what;
           ASSERT_EQ(wideD, d) << what;
+          expectCoordinates(
+            [&](const asmcore::Neighbors& tree, std::vector<Index>& i, std::vector<double>& sq,
+              std::vector<double>* x) {
+              x ? tree.KNearest(q.data(), k, i, sq, *x) : tree.KNearest(q.data(), k, i, sq);
+            },
+            what + " k=" + std::to_string(k) + " with coordinates");
         }
         const asmcore::NearestPoint a = compact.Nearest(q.data()), b = wide.Nearest(q.data());
         ASSERT_EQ(b.Id, a.Id) << what;
@@ -273,6 +306,13 @@ TEST(Neighbors, FloatCloudsGetTheCompactLayoutWithTheSameAnswers)
           wide.Radius(q.data(), r * (lattice ? 4.0 : 1.0), wideIds, wideD);
           ASSERT_EQ(wideIds, ids) << what << " r=" << r;
           ASSERT_EQ(wideD, d) << what << " r=" << r;
+          const double radius = r * (lattice ? 4.0 : 1.0);
+          expectCoordinates(
+            [&](const asmcore::Neighbors& tree, std::vector<Index>& i, std::vector<double>& sq,
+              std::vector<double>* x) {
+              x ? tree.Radius(q.data(), radius, i, sq, *x) : tree.Radius(q.data(), radius, i, sq);
+            },
+            what + " r=" + std::to_string(r) + " with coordinates");
         }
       }
     }
@@ -290,6 +330,13 @@ TEST(Neighbors, BadArgumentsGiveEmptyResults)
   const double good[3] = { 0.5, 0.5, 0.5 };
   tree.KNearest(bad, 3, ids, d);
   EXPECT_TRUE(ids.empty());
+  std::vector<double> xyz;
+  tree.KNearest(good, 3, ids, d, xyz); // (then the bad query must clear all three)
+  tree.KNearest(bad, 3, ids, d, xyz);
+  EXPECT_TRUE(ids.empty() && d.empty() && xyz.empty());
+  tree.Radius(good, 1.0, ids, d, xyz);
+  tree.Radius(bad, 1.0, ids, d, xyz);
+  EXPECT_TRUE(ids.empty() && d.empty() && xyz.empty());
   tree.KNearest(good, 0, ids, d);
   EXPECT_TRUE(ids.empty());
   EXPECT_EQ(-1, tree.Nearest(bad).Id);
