@@ -38,7 +38,7 @@ Eigen::Vector3d CellFrame::ToLocal(const double p[3]) const
   return this->Axes.transpose() * d;
 }
 
-CellFrame ComputeCellFrame(Coordinates xyz, IdView ids)
+CellFrame ComputeCellFrame(Coordinates xyz, IdView ids, FrameSolver solverKind)
 {
   const auto count = static_cast<Index>(ids.size());
   CellFrame frame;
@@ -71,7 +71,15 @@ CellFrame ComputeCellFrame(Coordinates xyz, IdView ids)
     return frame; // overflow on absurd coordinates: identity frame
   }
 
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  if (solverKind == FrameSolver::ClosedForm)
+  {
+    solver.computeDirect(cov);
+  }
+  else
+  {
+    solver.compute(cov);
+  }
   if (solver.info() != Eigen::Success)
   {
     return frame;

@@ -30,11 +30,19 @@ struct VTKASMFILTERS_EXPORT CellFrame
   Eigen::Vector3d ToLocal(const double p[3]) const;
 };
 
+/// How the covariance's eigenpairs are found.
+enum class FrameSolver
+{
+  Iterative, ///< Eigen's QR iteration: accurate to the last bits (the cells' frames)
+  ClosedForm ///< Eigen's closed form (computeDirect): about 3x faster, axes within ~1e-12
+};
+
 /// The PCA frame of the points xyz[ids[i]], i < ids.size(). The eigenvector
 /// signs are fixed (largest component of v0 and v1 positive) so the frame
 /// does not depend on the eigen solver's choices. Coincident or collinear
 /// points give a valid frame with zero eigenvalues.
-VTKASMFILTERS_EXPORT CellFrame ComputeCellFrame(Coordinates xyz, IdView ids);
+VTKASMFILTERS_EXPORT CellFrame ComputeCellFrame(
+  Coordinates xyz, IdView ids, FrameSolver solver = FrameSolver::Iterative);
 } // namespace asmcore
 
 #endif

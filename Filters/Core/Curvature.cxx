@@ -4,7 +4,7 @@
 #include "CellFrame.h"
 
 #include <Eigen/Core>
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -28,8 +28,19 @@ bool Finite(const double p[3])
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
-// Relative pivot below which the quadric's design matrix is rank-deficient.
+// Relative pivot below which the quadric's design matrix is rank-deficient
+// (a pivot of its QR, |R_ii| / |R_00|; the LDLT of the normal equations
+// has D_i = R_ii^2, so its pivots are compared with the square).
 constexpr double RankThreshold = 1e-6;
+
+// Whether the pivots D of a pivoted LDLT of A^T A (largest first, as the
+// pivoting takes them) are all above RankThreshold of the largest, squared.
+bool IsFullRank(const Eigen::Matrix<double, 6, 1>& d)
+{
+  const double largest = d.cwiseAbs().maxCoeff();
+  const double floor = RankThreshold * RankThreshold * largest;
+  return largest > 0.0 && std::isfinite(largest) && (d.array() > floor).all();
+}
 } // namespace
 
 CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors, Index count,
@@ -43,7 +54,8 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   estimate.NumberOfNeighbors = static_cast<int>(count);
 
   // 1-2. PCA frame and oriented normal.
-  const CellFrame frame = ComputeCellFrame(xyz, IdView(neighbors, static_cast<std::size_t>(count)));
+  const CellFrame frame = ComputeCellFrame(
+    xyz, IdView(neighbors, static_cast<std::size_t>(count)), FrameSolver::ClosedForm);
   Eigen::Vector3d n = frame.Normal();
   if (orientNormal &&
     n.dot(Eigen::Vector3d(orientNormal[0], orientNormal[1], orientNormal[2])) < 0.0)
@@ -67,8 +79,6 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   const Eigen::Vector3d e1 = frame.Axes.col(1);
   // Scratch kept per thread: the many small fits of a run allocate nothing.
   thread_local Eigen::Matrix<double, Eigen::Dynamic, 3> local;
-  thread_local Eigen::Matrix<double, Eigen::Dynamic, 6> design;
-  thread_local Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 6>> qr;
   local.resize(count, 3);
   double radius2 = 0.0;
   for (Index i = 0; i < count; ++i)
@@ -87,21 +97,56 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   }
   local /= scale;
 
-  // 4. Least squares: w = a u^2 + b uv + c v^2 + d u + e v + f.
-  design.resize(count, 6);
+  // 4. Least squares: w = a u^2 + b uv + c v^2 + d u + e v + f, through its
+  // normal equations (A^T A) x = A^T w, A's rows r = (u^2, uv, v^2, u, v, 1):
+  // in the scaled coordinates their entries are of order 1. A^T A holds the
+  // 15 moments m_ij = sum u^i v^j (i + j <= 4), A^T w the 6 sums of w u^i v^j
+  // (i + j <= 2), summed in scalars.
+  double m10 = 0, m01 = 0, m20 = 0, m11 = 0, m02 = 0, m30 = 0, m21 = 0, m12 = 0, m03 = 0;
+  double m40 = 0, m31 = 0, m22 = 0, m13 = 0, m04 = 0;
+  double w00 = 0, w10 = 0, w01 = 0, w20 = 0, w11 = 0, w02 = 0;
   for (Index i = 0; i < count; ++i)
   {
     const double u = local(i, 0);
     const double v = local(i, 1);
-    design.row(i) << u * u, u * v, v * v, u, v, 1.0;
+    const double w = local(i, 2);
+    const double uu = u * u, uv = u * v, vv = v * v;
+    m10 += u;
+    m01 += v;
+    m20 += uu;
+    m11 += uv;
+    m02 += vv;
+    m30 += uu * u;
+    m21 += uu * v;
+    m12 += u * vv;
+    m03 += vv * v;
+    m40 += uu * uu;
+    m31 += uu * uv;
+    m22 += uu * vv;
+    m13 += uv * vv;
+    m04 += vv * vv;
+    w00 += w;
+    w10 += w * u;
+    w01 += w * v;
+    w20 += w * uu;
+    w11 += w * uv;
+    w02 += w * vv;
   }
-  qr.setThreshold(RankThreshold);
-  qr.compute(design);
-  if (qr.rank() < 6)
+  Eigen::Matrix<double, 6, 6> normalMatrix;
+  // (Rows and columns in the order of r; symmetric.)
+  normalMatrix << m40, m31, m22, m30, m21, m20, //
+    m31, m22, m13, m21, m12, m11,               //
+    m22, m13, m04, m12, m03, m02,               //
+    m30, m21, m12, m20, m11, m10,               //
+    m21, m12, m03, m11, m02, m01,               //
+    m20, m11, m02, m10, m01, static_cast<double>(count);
+  const Eigen::Matrix<double, 6, 1> rhs(w20, w11, w02, w10, w01, w00);
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(normalMatrix);
+  if (ldlt.info() != Eigen::Success || !IsFullRank(ldlt.vectorD()))
   {
     return estimate; // ill-posed: plane
   }
-  const Eigen::Matrix<double, 6, 1> coef = qr.solve(local.col(2));
+  const Eigen::Matrix<double, 6, 1> coef = ldlt.solve(rhs);
   if (!coef.allFinite())
   {
     return estimate;

