@@ -140,7 +140,8 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
     m30, m21, m12, m20, m11, m10,               //
     m21, m12, m03, m11, m02, m01,               //
     m20, m11, m02, m10, m01, static_cast<double>(count);
-  const Eigen::Matrix<double, 6, 1> rhs(w20, w11, w02, w10, w01, w00);
+  Eigen::Matrix<double, 6, 1> rhs;
+  rhs << w20, w11, w02, w10, w01, w00;
   const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(normalMatrix);
   if (ldlt.info() != Eigen::Success || !IsFullRank(ldlt.vectorD()))
   {

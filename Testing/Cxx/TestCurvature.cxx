@@ -185,6 +185,34 @@ TEST(Curvature, OffCentreQueryUsesTheFullFormula)
   }
 }
 
+// The quadric fit's rank test is the QR's (a pivot below 1e-6 of the
+// largest), taken on the normal equations' pivots squared: a neighbourhood
+// 50 times longer than wide, on an exact shallow bowl, is still fitted
+// (its v^2 column is about 5e-4 of the largest, 2.5e-7 squared), and to
+// the exact curvature. A test on the unsquared pivots would fall back to
+// the plane here.
+TEST(Curvature, ElongatedNeighbourhoodsStillGetTheirQuadric)
+{
+  const double kappa = 0.01; // z = kappa (x^2 + y^2) / 2: mean curvature kappa at the apex
+  Cloud strip;
+  for (int i = -20; i <= 20; ++i)
+  {
+    for (int j = -2; j <= 2; ++j)
+    {
+      const double x = 0.05 * i, y = 0.01 * j;
+      asmtest::Add(strip, x, y, 0.5 * kappa * (x * x + y * y));
+    }
+  }
+  const std::vector<Index> ids = AllIds(strip);
+  const double apex[3] = { 0.0, 0.0, 0.0 };
+  const double down[3] = { 0, 0, -1 };
+  const CurvatureEstimate e = asmcore::EstimateCurvatureAt(
+    strip.data(), ids.data(), static_cast<Index>(ids.size()), apex, down);
+  EXPECT_TRUE(e.QuadricFit);
+  EXPECT_NEAR(kappa, e.MeanCurvature, 1e-6 * kappa);
+  EXPECT_NEAR(-1.0, e.Normal[2], 1e-12);
+}
+
 TEST(Curvature, CylinderMeanCurvatureIsHalfOverRadius)
 {
   for (double r : { 0.5, 1.0, 2.0 })
