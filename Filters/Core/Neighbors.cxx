@@ -117,6 +117,21 @@ struct Found
   bool operator<(const Found& other) const { return NeighborPrecedes(D, Id, other.D, other.Id); }
 };
 
+// Offers every entry of [first, last) to `result`: each one it accepts is
+// added (the plain scan of a leaf, for the sets without a faster one).
+template <typename Result, typename Entry>
+void OfferEach(Result& result, const Entry* first, const Entry* last, const double p[3])
+{
+  for (; first != last; ++first)
+  {
+    const double d = SquaredDistance(first->P, p);
+    if (result.Accepts(d, first->Id))
+    {
+      result.Add(d, *first);
+    }
+  }
+}
+
 // The k best entries in a max-heap on (d, id): for large k.
 template <typename Entry>
 class HeapKnn
@@ -146,14 +161,7 @@ public:
   /// Offers every entry of [first, last).
   void Scan(const Entry* first, const Entry* last, const double p[3])
   {
-    for (; first != last; ++first)
-    {
-      const double d = SquaredDistance(first->P, p);
-      if (this->Accepts(d, first->Id))
-      {
-        this->Add(d, *first);
-      }
-    }
+    OfferEach(*this, first, last, p);
   }
   std::vector<Found<Entry>> Heap;
 
@@ -176,14 +184,7 @@ public:
   /// Offers every entry of [first, last).
   void Scan(const Entry* first, const Entry* last, const double p[3])
   {
-    for (; first != last; ++first)
-    {
-      const double d = SquaredDistance(first->P, p);
-      if (this->Accepts(d, first->Id))
-      {
-        this->Add(d, *first);
-      }
-    }
+    OfferEach(*this, first, last, p);
   }
   std::vector<Found<Entry>> Hits;
 
