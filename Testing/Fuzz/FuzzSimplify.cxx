@@ -14,6 +14,11 @@
 // - the same result when the core's parallel loops are cut into single
 //   iterations run in reverse order (what vtkSMPTools may do);
 // - CompareClouds: finite, non-negative figures, one error per point.
+// - EstimateCurvature at the samples (the filter's curvature arrays), with 6
+//   and 20 neighbours: min(k, points) neighbours each; where a quadric was
+//   fitted a finite mean curvature, else 0; a surface variation in
+//   [0, 1/3] and a unit normal; the same bits with the reversed single
+//   steps.
 //
 // Input layout (missing bytes read as 0):
 //   header (16 bytes), then points of 7 bytes: a flag byte and 3 x int16.
@@ -30,6 +35,7 @@
 //   flag % 16   0 NaN, 1 +Inf, 2 -Inf (coordinate flag/16 % 3), 3 the previous
 //               point again, 4 an earlier point again, 5 far outlier (x 1e12),
 //               6 tiny (x 1e-300), else a plain point.
+#include "Core/Curvature.h"
 #include "Core/Grid.h"
 #include "Core/Metrics.h"
 #include "Core/Neighbors.h"
@@ -351,6 +357,48 @@ void CheckCompare(const Case& k, asmcore::IdView ids, const asmcore::SimplifyRes
     FUZZ_CHECK(std::isfinite(f) && f >= 0.0);
   }
 }
+void CheckCurvature(const Case& k, asmcore::IdView ids, const asmcore::SimplifyResult& r)
+{
+  if (ids.empty() || r.Samples.empty() || ids.size() > 1024)
+  {
+    return;
+  }
+  std::vector<double> positions, normals;
+  for (const asmcore::Sample& s : r.Samples)
+  {
+    positions.insert(positions.end(), s.Position, s.Position + 3);
+    normals.insert(normals.end(), s.Normal, s.Normal + 3);
+  }
+  const auto count = static_cast<Index>(r.Samples.size());
+  const asmcore::Neighbors tree(k.Xyz.data(), ids);
+  for (int neighbors : { 6, asmcore::DefaultCurvatureNeighbors })
+  {
+    const std::vector<asmcore::CurvatureEstimate> e = asmcore::EstimateCurvature(
+      k.Xyz.data(), ids, tree, positions.data(), count, normals.data(), neighbors, {});
+    const std::vector<asmcore::CurvatureEstimate> again = asmcore::EstimateCurvature(
+      k.Xyz.data(), ids, tree, positions.data(), count, normals.data(), neighbors,
+      ReversedSingleSteps());
+    FUZZ_CHECK(static_cast<Index>(e.size()) == count && again.size() == e.size());
+    const int expected = static_cast<int>(std::min<std::size_t>(neighbors, ids.size()));
+    for (std::size_t i = 0; i < e.size(); ++i)
+    {
+      const asmcore::CurvatureEstimate& x = e[i];
+      FUZZ_CHECK(x.NumberOfNeighbors == expected);
+      FUZZ_CHECK(x.QuadricFit ? std::isfinite(x.MeanCurvature) : x.MeanCurvature == 0.0);
+      FUZZ_CHECK(x.SurfaceVariation >= 0.0 && x.SurfaceVariation <= 1.0 / 3.0 + 1e-12);
+      const double norm2 =
+        x.Normal[0] * x.Normal[0] + x.Normal[1] * x.Normal[1] + x.Normal[2] * x.Normal[2];
+      FUZZ_CHECK(std::abs(norm2 - 1.0) <= 1e-9);
+      const asmcore::CurvatureEstimate& y = again[i];
+      FUZZ_CHECK(SameBits(x.MeanCurvature, y.MeanCurvature) &&
+        SameBits(x.SurfaceVariation, y.SurfaceVariation) && x.QuadricFit == y.QuadricFit);
+      for (int a = 0; a < 3; ++a)
+      {
+        FUZZ_CHECK(SameBits(x.Normal[a], y.Normal[a]));
+      }
+    }
+  }
+}
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -366,5 +414,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     asmcore::Simplify(k.Xyz.data(), ids, normals, k.Parameters, ReversedSingleSteps());
   CheckSameResult(r, again);
   CheckCompare(k, ids, r);
+  CheckCurvature(k, ids, r);
   return 0;
 }
