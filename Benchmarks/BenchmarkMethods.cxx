@@ -172,7 +172,7 @@ const std::map<std::string, Setter>& AsmSetters()
     ASM_SETTING(SamplesPerCell), ASM_SETTING(Alpha), ASM_SETTING(ErrorTolerance),
     ASM_SETTING(RelativeErrorTolerance), ASM_SETTING(WeightMode), ASM_SETTING(CurvatureWeight),
     ASM_SETTING(RandomSeed), ASM_SETTING(SnapToInputPoints), ASM_SETTING(GenerateCurvature),
-    ASM_SETTING(CurvatureNeighbors),
+    ASM_SETTING(CurvatureNeighbors), ASM_SETTING(MinimumPointsForThreads),
   };
   return setters;
 }

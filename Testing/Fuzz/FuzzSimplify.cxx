@@ -25,13 +25,17 @@
 //   header[0]   mode bits: 0 snap, 1 surface-variation weight, 2-3 degenerate
 //               shape (none, coplanar, collinear, one point), 4 float
 //               coordinates, 5 input normals, 6 paper mode (else
-//               feature-preserving); 7 free (new core modes go in
-//               ApplyModeBits, one line each)
+//               feature-preserving), 7 the feature-preserving options of
+//               header[12-15] (else their defaults); new core modes go in
+//               ApplyModeBits, one line each
 //   header[1-2] N_s (uint16)              header[3] cell size (0: automatic)
 //   header[4]   alpha (-0.05 .. 0.55)     header[5] error tolerance (0: off)
 //   header[6]   samples per cell (0..32)  header[7] random seed
 //   header[8]   extent scale 1e-30..1e30  header[9] offset from the origin, up to 1e15
 //   header[10]  link factor               header[11] curvature weight
+//   header[12-15] with mode bit 7: the feature-preserving mode's options,
+//               each over the range its vtkASMSimplify property accepts, 0
+//               bits giving the default (ApplyFeatureOptions)
 //   flag % 16   0 NaN, 1 +Inf, 2 -Inf (coordinate flag/16 % 3), 3 the previous
 //               point again, 4 an earlier point again, 5 far outlier (x 1e12),
 //               6 tiny (x 1e-300), else a plain point.
@@ -89,6 +93,48 @@ void ApplyModeBits(std::uint8_t mode, asmcore::SimplifyParameters& p)
   p.Mode = (mode & 64) ? asmcore::SimplifyMode::Paper : asmcore::SimplifyMode::FeaturePreserving;
 }
 
+// The feature-preserving mode's options (SimplifyParameters' defaults where
+// the bits are 0), over the values vtkASMSimplify's properties accept:
+//   b12: each set bit switches one fix off: 0 FillHoles, 1 CoverEveryCell,
+//        2 ValidateKeyPoints, 3 InPlaneKeyPoints, 4 ExtremeKeyPoints,
+//        5 InputPointSamples, 6 BoundSnappedHoles, 7 ReserveFreeSample
+//   b13: bits 0-1 LloydIterations {4, 0, 1, 20}, 2-3 CrossCellIterations
+//        {1, 0, 2, 4}, 4-5 FinalLloydIterations {2, 0, 1, 8}, 6
+//        SparseCellKeyPoints off, 7 CoveringRounds 2
+//   b14: bits 0-3 BudgetExponent (0: 0.5, else (v - 1) / 14 in [0, 1]),
+//        4-7 FeatureSamplesPerCell (0: 4, 15: -1 (SamplesPerCell), else
+//        2^(v - 7): 1/64 .. 128)
+//   b15: bits 0-3 HoleFillFraction (0: 0.02, else v / 30, up to 0.5), 4-5
+//        LloydVariationWeight {0.75, 0, 4, 100}, 6-7 VariationBudget and
+//        VariationCap {(1, 4), (0, 4), (10, 0: no cap), (1, 0.5)}
+void ApplyFeatureOptions(const std::uint8_t b[4], asmcore::SimplifyParameters& p)
+{
+  p.FillHoles = !(b[0] & 1);
+  p.CoverEveryCell = !(b[0] & 2);
+  p.ValidateKeyPoints = !(b[0] & 4);
+  p.InPlaneKeyPoints = !(b[0] & 8);
+  p.ExtremeKeyPoints = !(b[0] & 16);
+  p.InputPointSamples = !(b[0] & 32);
+  p.BoundSnappedHoles = !(b[0] & 64);
+  p.ReserveFreeSample = !(b[0] & 128);
+  static const int lloyd[4] = { 4, 0, 1, 20 }, cross[4] = { 1, 0, 2, 4 }, final[4] = { 2, 0, 1, 8 };
+  p.LloydIterations = lloyd[b[1] & 3];
+  p.CrossCellIterations = cross[(b[1] >> 2) & 3];
+  p.FinalLloydIterations = final[(b[1] >> 4) & 3];
+  p.SparseCellKeyPoints = !(b[1] & 64);
+  p.CoveringRounds = (b[1] & 128) ? 2 : 0;
+  const int exponent = b[2] & 15, perCell = b[2] >> 4;
+  p.BudgetExponent = exponent == 0 ? 0.5 : (exponent - 1) / 14.0;
+  p.FeatureSamplesPerCell = perCell == 0 ? 4.0 : perCell == 15 ? -1.0 : std::ldexp(1.0, perCell - 7);
+  const int fraction = b[3] & 15;
+  p.HoleFillFraction = fraction == 0 ? 0.02 : fraction / 30.0;
+  static const double lloydWeight[4] = { 0.75, 0.0, 4.0, 100.0 };
+  static const double budget[4][2] = { { 1.0, 4.0 }, { 0.0, 4.0 }, { 10.0, 0.0 }, { 1.0, 0.5 } };
+  p.LloydVariationWeight = lloydWeight[(b[3] >> 4) & 3];
+  p.VariationBudget = budget[b[3] >> 6][0];
+  p.VariationCap = budget[b[3] >> 6][1];
+}
+
 struct Case
 {
   std::vector<double> Xyz;
@@ -103,6 +149,11 @@ Case Decode(const Reader& in)
   const std::uint8_t mode = in.Byte(0);
   asmcore::SimplifyParameters& p = k.Parameters;
   ApplyModeBits(mode, p);
+  if (mode & 128)
+  {
+    const std::uint8_t options[4] = { in.Byte(12), in.Byte(13), in.Byte(14), in.Byte(15) };
+    ApplyFeatureOptions(options, p);
+  }
   const double scale = std::pow(10.0, static_cast<double>(in.Byte(8) % 61) - 30.0);
   const std::uint8_t off = in.Byte(9);
   const double offset = off < 128 ? 0.0 : (off & 1 ? -1.0 : 1.0) * std::pow(10.0, (off >> 1) % 16);

@@ -15,10 +15,14 @@ OUT = os.path.join(HERE, "corpus", "simplify")
 
 
 def header(mode=0, count=20, cell=0, alpha=0.125, tol=0, spc=8.0, seed=1,
-           scale=0, offset=0, link=2.0, weight=1.0):
+           scale=0, offset=0, link=2.0, weight=1.0, options=None):
+    """options: the 4 bytes of the feature-preserving mode's options (sets mode bit 7)."""
     a = max(0, min(255, round((alpha + 0.05) / 0.6 * 255)))
+    if options is not None:
+        mode |= 128
     return bytes([mode, count & 255, count >> 8, cell, a, tol, round(spc * 8), seed,
-                  (scale + 30) % 61, offset, round(link * 64), round(weight * 16), 0, 0, 0, 0])
+                  (scale + 30) % 61, offset, round(link * 64), round(weight * 16),
+                  *(options or (0, 0, 0, 0))])
 
 
 def point(x, y, z, flag=7):
@@ -60,6 +64,16 @@ def main():
     strip = [(rng.uniform(-1, 1), rng.uniform(-1, 1) * 1e-4, 0.0) for _ in range(150)]
     seeds["strip"] = header(count=15, scale=3) + b"".join(point(*p) for p in strip)
     seeds["all-pass-through"] = header(count=5000) + b"".join(point(*p) for p in ball[:50])
+    # The feature-preserving mode's options (FuzzSimplify.cxx, ApplyFeatureOptions).
+    seeds["options-all-off"] = header(count=25, options=(255, 64 | 5, 0, 0)) + b"".join(point(*p) for p in ball)
+    seeds["options-long-lloyd"] = header(count=40, options=(0, 3 | 3 << 2 | 3 << 4 | 128, 0, 15 | 3 << 4 | 2 << 6)) + \
+        b"".join(point(*p) for p in wave)
+    seeds["options-fine-cells"] = header(count=30, options=(0, 0, 15 | 1 << 4, 1 << 4 | 3 << 6)) + \
+        b"".join(point(*p) for p in ball)
+    seeds["options-large-cells"] = header(count=150, options=(2, 2 << 2, 1 | 14 << 4, 8)) + \
+        b"".join(point(*p) for p in ball)
+    seeds["options-duplicates"] = header(count=12, options=(1 | 32 | 128, 1, 15 << 4, 0)) + b"".join(
+        point(*p, flag=3 if i % 2 else 7) for i, p in enumerate(ball[:120]))
     for name, blob in seeds.items():
         with open(os.path.join(OUT, name), "wb") as f:
             f.write(blob)
