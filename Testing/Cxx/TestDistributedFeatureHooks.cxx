@@ -322,3 +322,51 @@ TEST(DistributedFeatureHooks, PaperResultDoesNotDependOnPointOrder)
   p.NumberOfSamples = 1500;
   CheckOrder(p);
 }
+
+// Combinations of the feature-preserving mode's options (each switch, the
+// iteration counts, the budget and the variation weights, over the values
+// vtkASMSimplify's properties accept), drawn from a fixed seed and run as
+// the filter runs them distributed (the halo cells' samples from their
+// owners after every step): the slabs give the serial samples for each.
+// (With a halo three rings narrower, four of the first six differ.)
+TEST(DistributedFeatureHooks, OptionCombinationsOverSlabs)
+{
+  std::mt19937 random(2026);
+  auto draw = [&](std::size_t n) { return static_cast<std::size_t>(random() % n); };
+  auto coin = [&]() { return draw(2) == 1; };
+  for (int trial = 0; trial < 10; ++trial)
+  {
+    asmcore::SimplifyParameters p = HoleFillingParameters();
+    p.NumberOfSamples = 12000;
+    p.FillHoles = coin();
+    p.ValidateKeyPoints = coin();
+    p.InPlaneKeyPoints = coin();
+    p.ExtremeKeyPoints = coin();
+    p.SparseCellKeyPoints = coin();
+    p.CoverEveryCell = coin();
+    p.ReserveFreeSample = coin();
+    p.InputPointSamples = coin();
+    p.KeyPointRadius = std::array<double, 3>{ 0.01, 0.7, 1.0 }[draw(3)];
+    p.KeyPointProminence = std::array<double, 3>{ 0.0, 0.05, 0.5 }[draw(3)];
+    p.BudgetExponent = std::array<double, 3>{ 0.0, 0.5, 1.0 }[draw(3)];
+    p.LloydIterations = std::array<int, 3>{ 0, 1, 4 }[draw(3)];
+    p.CrossCellIterations = static_cast<int>(draw(5));
+    p.FinalLloydIterations = static_cast<int>(draw(4));
+    p.CoveringRounds = draw(4) == 0 ? 1 : 0;
+    p.HoleFillFraction = std::array<double, 3>{ 0.0, 0.02, 0.5 }[draw(3)];
+    p.LloydVariationWeight = std::array<double, 3>{ 0.0, 0.75, 100.0 }[draw(3)];
+    p.VariationBudget = std::array<double, 3>{ 0.0, 1.0, 10.0 }[draw(3)];
+    p.VariationCap = std::array<double, 3>{ 0.0, 0.5, 4.0 }[draw(3)];
+    SCOPED_TRACE(::testing::Message()
+      << "trial " << trial << ": holes " << p.FillHoles << " validate " << p.ValidateKeyPoints
+      << " in-plane " << p.InPlaneKeyPoints << " extreme " << p.ExtremeKeyPoints << " sparse "
+      << p.SparseCellKeyPoints << " cover " << p.CoverEveryCell << " reserve "
+      << p.ReserveFreeSample << " input points " << p.InputPointSamples << " radius "
+      << p.KeyPointRadius << " prominence " << p.KeyPointProminence << " exponent "
+      << p.BudgetExponent << " lloyd " << p.LloydIterations << " cross "
+      << p.CrossCellIterations << " final " << p.FinalLloydIterations << " covering "
+      << p.CoveringRounds << " fraction " << p.HoleFillFraction << " weight "
+      << p.LloydVariationWeight << " budget " << p.VariationBudget << " cap " << p.VariationCap);
+    EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 50000, true));
+  }
+}
