@@ -30,7 +30,8 @@
 //               ApplyModeBits, one line each
 //   header[1-2] N_s (uint16)              header[3] cell size (0: automatic)
 //   header[4]   alpha (-0.05 .. 0.55)     header[5] error tolerance (0: off)
-//   header[6]   samples per cell (0..32)  header[7] random seed
+//   header[6]   samples per cell (0..32)  header[7] random seed (and the
+//               comparison's plane neighbours and distance measure)
 //   header[8]   extent scale 1e-30..1e30  header[9] offset from the origin, up to 1e15
 //   header[10]  link factor               header[11] curvature weight
 //   header[12-15] with mode bit 7: the feature-preserving mode's options,
@@ -397,6 +398,13 @@ void CheckCompare(const Case& k, asmcore::IdView ids, const asmcore::SimplifyRes
   options.Rule.CoordinateEpsilon = k.Parameters.CoordinateEpsilon;
   options.CellSize = k.Parameters.CellSize;
   options.SamplesPerCell = k.Parameters.SamplesPerCell;
+  // vtkKeyPointError's own options, from the seed byte: PlaneNeighbors in
+  // 3 .. 1000 (the property's range; more than the samples too), the squared
+  // distance of the paper's Eq. 3 every other seed.
+  static const int planeNeighbors[4] = { 8, 3, 17, 1000 };
+  options.PlaneNeighbors = planeNeighbors[k.Parameters.RandomSeed % 4];
+  options.Measure = (k.Parameters.RandomSeed & 4) ? asmcore::KeyPointDistance::Squared
+                                                  : asmcore::KeyPointDistance::Euclidean;
   const asmcore::Comparison c =
     asmcore::CompareClouds(k.Xyz.data(), ids, tree, simplified.data(), sids, options);
   FUZZ_CHECK(!c.Aborted);
