@@ -79,10 +79,11 @@ void TakeOwnersSamples(const std::vector<double>& all, const std::vector<std::ui
 // `exchange`: the halo cells' samples come from their owners after every
 // step (ShareSamples), with a halo of InfluenceRingsPerStep + 2 rings
 // instead of InfluenceRingsOf + 2; `narrower`: that many rings fewer.
-bool SlabsGiveTheSerialSamples(
-  asmcore::SimplifyParameters p, int slabs, Index points = 20000, bool exchange = false, int narrower = 0)
+// `given`: that cloud instead of a sphere of `points` points.
+bool SlabsGiveTheSerialSamples(asmcore::SimplifyParameters p, int slabs, Index points = 20000,
+  bool exchange = false, int narrower = 0, const asmtest::Cloud* given = nullptr)
 {
-  const asmtest::Cloud cloud = asmtest::Sphere(points, 2.0, 5);
+  const asmtest::Cloud cloud = given ? *given : asmtest::Sphere(points, 2.0, 5);
   const std::vector<Index> ids = asmtest::AllIds(cloud);
   const asmcore::SimplifyResult serial = asmcore::Simplify(cloud.data(), ids, nullptr, p);
   EXPECT_EQ(serial.Samples.size(), static_cast<std::size_t>(p.NumberOfSamples));
@@ -368,5 +369,30 @@ TEST(DistributedFeatureHooks, OptionCombinationsOverSlabs)
       << p.CoveringRounds << " fraction " << p.HoleFillFraction << " weight "
       << p.LloydVariationWeight << " budget " << p.VariationBudget << " cap " << p.VariationCap);
     EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 50000, true));
+  }
+}
+
+// Gridded data (a raster's points: a flat lattice, a smooth height field and
+// one with steps), every point twice: exact ties everywhere (equal
+// distances to samples, equal spreads and gaps, duplicate points split
+// between clusters) break the same way over slabs as in the serial run.
+// (With a halo of one ring, four of the six cases differ.)
+TEST(DistributedFeatureHooks, LatticeWithDuplicatesOverSlabs)
+{
+  asmcore::SimplifyParameters p = HoleFillingParameters();
+  p.BoundSnappedHoles = false;
+  for (int variant = 0; variant < 3; ++variant)
+  {
+    asmtest::Cloud cloud = asmtest::GridSurface(300, 3.0, [variant](double x, double y) {
+      return variant == 0 ? 0.0 : variant == 1 ? 0.3 * std::sin(x) * std::cos(y) : std::floor(x + y) * 0.1;
+    });
+    const asmtest::Cloud copy = cloud;
+    cloud.insert(cloud.end(), copy.begin(), copy.end()); // every point twice
+    for (Index ns : { Index(2000), Index(18000) })
+    {
+      p.NumberOfSamples = ns;
+      SCOPED_TRACE(::testing::Message() << "variant " << variant << " N_s " << ns);
+      EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 0, true, 0, &cloud));
+    }
   }
 }
