@@ -27,23 +27,23 @@ std::vector<std::array<double, 4>> Sorted(const asmcore::SimplifyResult& r)
     r, [](const asmcore::Sample& s, double* more) { more[0] = static_cast<double>(s.CoreSize); });
 }
 
-void CheckSplit(asmcore::WeightMode weight)
+void CheckSplit(asmcore::WeightMode weight, const asmtest::Cloud& cloud = asmtest::Sphere(6000, 2.0, 11),
+  Index count = 701)
 {
-  const asmtest::Cloud cloud = asmtest::Sphere(6000, 2.0, 11);
   const std::vector<Index> ids = asmtest::AllIds(cloud);
   asmcore::SimplifyParameters p;
-  p.NumberOfSamples = 701;
+  p.NumberOfSamples = count;
   p.Weight = weight;
   p.Mode = asmcore::SimplifyMode::Paper; // the hooks serve the paper mode (distributed runs)
   const asmcore::SimplifyResult serial = asmcore::Simplify(cloud.data(), ids, nullptr, p);
-  ASSERT_EQ(serial.Samples.size(), 701u);
+  ASSERT_EQ(serial.Samples.size(), static_cast<std::size_t>(count));
 
   // The serial grid and budgets, computed as a distributed run does: cells
   // in key order, CellShares, ApportionBudget.
   const asmtest::GlobalCells cells(cloud, ids, serial.CellSize);
   const asmcore::GridSpec& spec = cells.Spec;
   const std::vector<Index> budget =
-    asmcore::ApportionBudget(asmcore::CellShares(cells.Capacity, cells.Variation, p), cells.Capacity, 701);
+    asmcore::ApportionBudget(asmcore::CellShares(cells.Capacity, cells.Variation, p), cells.Capacity, count);
   const std::map<std::uint64_t, Index> budgetOf = cells.ByKey(budget);
   const double* centroid = cells.Centroid;
 
@@ -101,6 +101,23 @@ TEST(DistributedHooks, CellSplitGivesTheSerialSamplesUniform)
 TEST(DistributedHooks, CellSplitGivesTheSerialSamplesSurfaceVariation)
 {
   CheckSplit(asmcore::WeightMode::SurfaceVariation);
+}
+
+// Gridded data with every point twice (exact ties in the key clusters'
+// extremes, the median splits and the random choice among key clusters).
+TEST(DistributedHooks, CellSplitGivesTheSerialSamplesOnALatticeWithDuplicates)
+{
+  for (int variant = 0; variant < 2; ++variant)
+  {
+    asmtest::Cloud cloud = asmtest::GridSurface(120, 3.0, [variant](double x, double y) {
+      return variant == 0 ? 0.3 * std::sin(x) * std::cos(y) : std::floor(x + y) * 0.1;
+    });
+    const asmtest::Cloud copy = cloud;
+    cloud.insert(cloud.end(), copy.begin(), copy.end());
+    SCOPED_TRACE(::testing::Message() << "variant " << variant);
+    CheckSplit(asmcore::WeightMode::Uniform, cloud, 1440);
+    CheckSplit(asmcore::WeightMode::SurfaceVariation, cloud, 1440);
+  }
 }
 
 // SimplifyParameters::Cells (a distributed run's points arrive grouped by
