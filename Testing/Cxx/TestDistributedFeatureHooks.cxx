@@ -184,9 +184,8 @@ bool SlabsGiveTheSerialSamples(asmcore::SimplifyParameters p, int slabs, Index p
   return members == static_cast<Index>(ids.size()) && merged == Sorted(serial);
 }
 
-void CheckOrder(asmcore::SimplifyParameters p)
+void CheckOrder(asmcore::SimplifyParameters p, const asmtest::Cloud& cloud = asmtest::Sphere(20000, 2.0, 9))
 {
-  const asmtest::Cloud cloud = asmtest::Sphere(20000, 2.0, 9);
   std::vector<Index> ids = asmtest::AllIds(cloud);
   const auto reference = Sorted(asmcore::Simplify(cloud.data(), ids, nullptr, p));
   ASSERT_EQ(reference.size(), static_cast<std::size_t>(p.NumberOfSamples));
@@ -394,5 +393,26 @@ TEST(DistributedFeatureHooks, LatticeWithDuplicatesOverSlabs)
       SCOPED_TRACE(::testing::Message() << "variant " << variant << " N_s " << ns);
       EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 0, true, 0, &cloud));
     }
+  }
+}
+
+// The same on gridded clouds with every point twice, whose distinct points
+// tie exactly everywhere: both modes break the ties by position, not by
+// the points' order.
+TEST(DistributedFeatureHooks, ResultOnALatticeWithDuplicatesDoesNotDependOnPointOrder)
+{
+  for (int variant = 0; variant < 3; ++variant)
+  {
+    asmtest::Cloud cloud = asmtest::GridSurface(150, 3.0, [variant](double x, double y) {
+      return variant == 0 ? 0.0 : variant == 1 ? 0.3 * std::sin(x) * std::cos(y) : std::floor(x + y) * 0.1;
+    });
+    const asmtest::Cloud copy = cloud;
+    cloud.insert(cloud.end(), copy.begin(), copy.end());
+    SCOPED_TRACE(::testing::Message() << "variant " << variant);
+    asmcore::SimplifyParameters p;
+    p.NumberOfSamples = 2000;
+    CheckOrder(p, cloud);
+    p.Mode = asmcore::SimplifyMode::Paper;
+    CheckOrder(p, cloud);
   }
 }
