@@ -8,6 +8,7 @@
 #include "Core/Budget.h"
 #include "Core/CellSize.h"
 #include "Core/CellFrame.h"
+#include "Core/Grid.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -228,6 +229,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   const LocalCloud& cloud = share.Cloud;
   std::vector<Index> capacity;
   std::vector<double> variation;
+  asmcore::CanonicalCell local;
   for (Index c = 0; c < cloud.Cells.NumberOfCells(); ++c)
   {
     const Index i = cloud.Cells.CellStart[c];
@@ -236,12 +238,16 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
     {
       share.OwnedKeys.push_back(cloud.Cells.CellKey[c]);
       capacity.push_back(j - i);
-      // The same frame the core computes (same points, same order).
-      variation.push_back(asmcore::VariationWeightOf(parameters) != 0.0
-          ? asmcore::ComputeCellFrame(
-              cloud.Xyz.data(), asmcore::IdView::Range(i, static_cast<std::size_t>(j - i)))
-              .SurfaceVariation()
-          : 0.0);
+      // The same frame the core computes (same points, in the same,
+      // canonical, order).
+      double v = 0.0;
+      if (asmcore::VariationWeightOf(parameters) != 0.0)
+      {
+        local.Gather(cloud.Xyz.data(), asmcore::IdView::Range(i, static_cast<std::size_t>(j - i)));
+        v = asmcore::ComputeCellFrame(local.Xyz.data(), asmcore::IdView::Identity(local.Ids.size()))
+              .SurfaceVariation();
+      }
+      variation.push_back(v);
     }
   }
   share.Budgets = GlobalBudgets(comm, share.OwnedKeys, capacity, variation, parameters,

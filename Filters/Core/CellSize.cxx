@@ -14,19 +14,6 @@ using namespace occupancy;
 
 namespace
 {
-// A point's coordinates hashed (the bits of the three doubles, mixed).
-inline std::uint64_t CoordinateHash(const double* p)
-{
-  std::uint64_t bits[3];
-  std::memcpy(bits, p, sizeof(bits));
-  SplitMix64 mix(bits[0] ^ ((bits[1] << 21) | (bits[1] >> 43)) ^ ((bits[2] << 42) | (bits[2] >> 22)));
-  return mix.Next();
-}
-
-} // namespace
-
-namespace
-{
 // Non-empty cells of `spec`, each counted by min(1, points / minPoints): a
 // cell too sparse to get a sample of its own (a far outlier, a stray point)
 // counts for its share only.

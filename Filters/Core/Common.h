@@ -17,6 +17,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -333,6 +334,17 @@ public:
 private:
   std::uint64_t State;
 };
+
+/// A well-mixed 64-bit hash of a point's three coordinates (their bits): a
+/// function of the position alone, whatever the point's id or place in the
+/// input.
+inline std::uint64_t CoordinateHash(const double* p)
+{
+  std::uint64_t bits[3];
+  std::memcpy(bits, p, sizeof(bits));
+  SplitMix64 mix(bits[0] ^ ((bits[1] << 21) | (bits[1] >> 43)) ^ ((bits[2] << 42) | (bits[2] >> 22)));
+  return mix.Next();
+}
 } // namespace asmcore
 
 #endif

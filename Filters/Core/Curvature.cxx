@@ -206,7 +206,7 @@ std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
     for (Index i = begin; i < end; ++i)
     {
       const double* q = queries + 3 * i;
-      tree.KNearest(q, k, neighbors, sqDist, local);
+      tree.KNearestByPosition(q, k, neighbors, sqDist, local);
       double away[3];
       const double* orient = orientNormals ? orientNormals + 3 * i : away;
       for (int a = 0; a < 3; ++a)

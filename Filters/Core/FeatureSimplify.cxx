@@ -19,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <type_traits>
 
 namespace asmcore
 {
@@ -178,20 +179,46 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     return result;
   }
   // Every later pass reads the points cell by cell: a copy in cell order
-  // (slot i holds point original.Order[i]) keeps those reads sequential. Of
-  // the input's type: a float cloud's copy is floats (12 bytes per point).
-  // (Left uninitialised: the parallel copy takes the page faults.)
+  // (slot i holds point original.Order[i]) keeps those reads sequential,
+  // each cell's points in its canonical order (PutInCanonicalOrder: the
+  // result does not depend on the input's order). Of the input's type: a
+  // float cloud's copy is floats (12 bytes per point). (Left uninitialised:
+  // the parallel copy takes the page faults.)
   std::unique_ptr<double[]> cellDoubles;
   std::unique_ptr<float[]> cellFloats;
   const auto copyInCellOrder = [&](auto* to, const auto* from) {
-    execution.Run(0, total, [&](Index b, Index e) {
-      for (Index i = b; i < e; ++i)
+    using T = std::remove_const_t<std::remove_pointer_t<decltype(from)>>;
+    execution.Run(0, original.NumberOfCells(), [&](Index b, Index e) {
+      std::vector<double> gathered;
+      std::vector<Index> ids, order;
+      CanonicalOrderScratch scratch;
+      for (Index c = b; c < e; ++c)
       {
-        if (i + 16 < e)
+        const Index first = original.CellStart[c], n = original.CellSizeOf(c);
+        Index* cellIds = original.Order.data() + first;
+        gathered.resize(static_cast<std::size_t>(3 * n));
+        for (Index i = 0; i < n; ++i)
         {
-          Prefetch(from + 3 * original.Order[i + 16]);
+          if (first + i + 16 < total)
+          {
+            Prefetch(from + 3 * cellIds[i + 16]);
+          }
+          for (int a = 0; a < 3; ++a)
+          {
+            gathered[3 * i + a] = static_cast<double>(from[3 * cellIds[i] + a]);
+          }
         }
-        std::copy_n(from + 3 * original.Order[i], 3, to + 3 * i);
+        CanonicalOrder(gathered.data(), cellIds, n, order, scratch);
+        ids.assign(cellIds, cellIds + n);
+        for (Index k = 0; k < n; ++k)
+        {
+          const Index i = order[k];
+          for (int a = 0; a < 3; ++a)
+          {
+            to[3 * (first + k) + a] = static_cast<T>(gathered[3 * i + a]);
+          }
+          cellIds[k] = ids[i];
+        }
       }
     });
   };

@@ -44,11 +44,13 @@ std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
   std::vector<std::vector<Eigen::Vector3d>> perCell(static_cast<std::size_t>(cells));
   execution.Run(0, cells, [&](Index b, Index e) {
     LocalPoints q;
+    CanonicalCell local; // (the simplifier's order: the same key points)
     for (Index c = b; c < e; ++c)
     {
-      const IdView points = grid.CellIds(c);
-      const CellFrame frame = ComputeCellFrame(xyz, points);
-      const KeyClusters kc = FindCellKeyClusters(xyz, points, frame, rule, q);
+      local.Gather(xyz, grid.CellIds(c));
+      const IdView points = IdView::Identity(local.Ids.size());
+      const CellFrame frame = ComputeCellFrame(local.Xyz.data(), points);
+      const KeyClusters kc = FindCellKeyClusters(local.Xyz.data(), points, frame, rule, q);
       for (Index k = 0; k < kc.Key.Size(); ++k)
       {
         perCell[c].push_back(frame.Centroid + frame.Axes * Centroid(q, kc.Key.Begin(k), kc.Key.End(k)));

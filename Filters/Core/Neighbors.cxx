@@ -407,6 +407,61 @@ void Neighbors::KNearest(const double p[3], int k, std::vector<Index>& ids,
                            : KNearestIn(this->Wide, p, k, answer);
 }
 
+void Neighbors::KNearestByPosition(const double p[3], int k, std::vector<Index>& ids,
+  std::vector<double>& sqDist, std::vector<double>& xyz) const
+{
+  this->KNearest(p, k < 0 ? k : k + 1, ids, sqDist, xyz);
+  auto count = static_cast<Index>(ids.size());
+  if (count > k && k > 0 && sqDist[k] == sqDist[k - 1])
+  {
+    // More points as near as the k-th: all of them.
+    const double d = sqDist[k - 1];
+    double r = std::sqrt(d);
+    while (r * r < d)
+    {
+      r = std::nextafter(r, std::numeric_limits<double>::infinity());
+    }
+    this->Radius(p, r, ids, sqDist, xyz);
+    count = static_cast<Index>(ids.size());
+    while (count > 0 && sqDist[count - 1] > d)
+    {
+      --count;
+    }
+  }
+  // Runs of equal distance by position (the answer is sorted by distance,
+  // then id: only points as near as each other move).
+  auto before = [&](Index a, Index b) {
+    if (sqDist[a] != sqDist[b])
+    {
+      return sqDist[a] < sqDist[b];
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (xyz[3 * a + c] != xyz[3 * b + c])
+      {
+        return xyz[3 * a + c] < xyz[3 * b + c];
+      }
+    }
+    return ids[a] < ids[b];
+  };
+  for (Index i = 1; i < count; ++i)
+  {
+    for (Index j = i; j > 0 && sqDist[j] == sqDist[j - 1] && before(j, j - 1); --j)
+    {
+      std::swap(ids[j], ids[j - 1]);
+      std::swap(sqDist[j], sqDist[j - 1]);
+      for (int c = 0; c < 3; ++c)
+      {
+        std::swap(xyz[3 * j + c], xyz[3 * (j - 1) + c]);
+      }
+    }
+  }
+  count = std::min<Index>(count, std::max(k, 0));
+  ids.resize(static_cast<std::size_t>(count));
+  sqDist.resize(static_cast<std::size_t>(count));
+  xyz.resize(static_cast<std::size_t>(3 * count));
+}
+
 NearestPoint Neighbors::Nearest(const double p[3]) const
 {
   return this->HasCompactLayout() ? NearestIn(this->Compact, p) : NearestIn(this->Wide, p);

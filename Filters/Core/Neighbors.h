@@ -202,6 +202,16 @@ public:
   void KNearest(const double p[3], int k, std::vector<Index>& ids, std::vector<double>& sqDist,
     std::vector<double>& xyz) const;
 
+  /// The min(k, Size()) points nearest p as KNearest (with coordinates), but
+  /// points as near as each other ordered by position (x, then y, then z,
+  /// then id), the choice among those as near as the k-th included: the
+  /// answer does not depend on the points' ids, i.e. on the order the cloud
+  /// came in, even on gridded clouds where many points are equally near.
+  /// One more point than k is searched, and every point as near as the
+  /// k-th only when that one is as near.
+  void KNearestByPosition(const double p[3], int k, std::vector<Index>& ids,
+    std::vector<double>& sqDist, std::vector<double>& xyz) const;
+
   /// The point nearest p (ties: the smaller id).
   NearestPoint Nearest(const double p[3]) const;
 

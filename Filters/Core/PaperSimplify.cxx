@@ -28,28 +28,6 @@ struct Groups
   Index Size() const { return this->Members.Size(); }
 };
 
-// A cell's points gathered as doubles (floats widened exactly), in the
-// cell's order (local slot i is points[i]; IdView::Identity(n) lists the
-// slots): the per-cell steps read them from here (cache-resident) instead of
-// from the scattered input, which needs no double copy of its own.
-struct CellCoordinates
-{
-  std::vector<double> Xyz;
-
-  void Gather(Coordinates xyz, const Index* points, Index n)
-  {
-    this->Xyz.resize(static_cast<std::size_t>(3 * n));
-    for (Index i = 0; i < n; ++i)
-    {
-      if (i + 8 < n)
-      {
-        Prefetch(xyz.Address(points[i + 8])); // the points are scattered in memory
-      }
-      xyz.Get(points[i], this->Xyz.data() + 3 * i);
-    }
-  }
-};
-
 // Step 6 of the pipeline (§3.3): from the key clusters and the cell's budget,
 // the groups of points that become the cell's samples (appended to `groups`,
 // cleared first). `xyz` (the cell's points, in the order of q) orders the
@@ -194,7 +172,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
   {
     frames.resize(static_cast<std::size_t>(cells));
     execution.Run(0, cells, [&](Index b, Index e) {
-      CellCoordinates local;
+      CanonicalCell local;
       for (Index c = b; c < e; ++c)
       {
         local.Gather(xyz, grid.CellPoints(c), grid.CellSizeOf(c));
@@ -263,8 +241,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
   // its own slots, so the result does not depend on the thread count.
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
-    std::vector<Index> cellPoints;
-    CellCoordinates local;
+    CanonicalCell local;
     Groups groups;
     std::vector<char> grouped;
     for (Index c = b; c < e; ++c)
@@ -274,12 +251,10 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
         continue; // no sample: the points stay unclaimed in their slots
       }
       const Index n = grid.CellSizeOf(c);
-      cellPoints.assign(result.Members.begin() + grid.CellStart[c],
-        result.Members.begin() + grid.CellStart[c + 1]);
-      const Index* points = cellPoints.data(); // (input point ids)
-      // The geometry reads the cell's points from a local copy (doubles,
-      // in the same order): local slot i is point points[i].
-      local.Gather(xyz, points, n);
+      // The geometry reads the cell's points from a local copy (doubles, in
+      // the cell's canonical order): local slot i is point points[i].
+      local.Gather(xyz, result.Members.data() + grid.CellStart[c], n);
+      const Index* points = local.Ids.data(); // (input point ids)
       const double* cellXyz = local.Xyz.data();
       const IdView slots = IdView::Identity(static_cast<std::size_t>(n));
       const CellFrame frame = framesFirst ? frames[c] : ComputeCellFrame(cellXyz, slots);

@@ -36,11 +36,14 @@ struct GlobalCells
     const asmcore::Bounds bounds = asmcore::ComputeBounds(cloud.data(), ids);
     this->Spec = asmcore::GridSpec::Make(bounds, cellSize);
     this->Grid = asmcore::BuildCellGrid(cloud.data(), ids, this->Spec);
+    asmcore::CanonicalCell local; // (the core's order within a cell)
     for (asmcore::Index c = 0; c < this->Grid.NumberOfCells(); ++c)
     {
       this->Capacity.push_back(this->Grid.CellSizeOf(c));
+      local.Gather(cloud.data(), this->Grid.CellIds(c));
       this->Variation.push_back(
-        asmcore::ComputeCellFrame(cloud.data(), this->Grid.CellIds(c)).SurfaceVariation());
+        asmcore::ComputeCellFrame(local.Xyz.data(), asmcore::IdView::Identity(local.Ids.size()))
+          .SurfaceVariation());
     }
     for (asmcore::Index id : ids)
     {

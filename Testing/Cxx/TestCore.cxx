@@ -14,7 +14,9 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
+#include <random>
 #include <set>
 
 using asmcore::Index;
@@ -140,6 +142,71 @@ TEST(Grid, CellsHoldTheirPoints)
     }
   }
   EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, spec), grid.NumberOfCells());
+}
+
+// A cell's canonical order is a function of its points: the same sequence
+// of positions whatever order they come in (a lattice of ties, -0 and +0,
+// duplicates), duplicates ordered by id.
+TEST(Grid, CanonicalOrderDoesNotDependOnTheOrderOfThePoints)
+{
+  Cloud c;
+  for (int i = 0; i < 12; ++i)
+  {
+    for (int j = 0; j < 12; ++j)
+    {
+      asmtest::Add(c, 0.1 * i, 0.1 * j, 0.0);
+    }
+  }
+  asmtest::Add(c, -0.0, 0.5, 0.0); // the same position as (0, 0.5, 0)
+  asmtest::Add(c, 0.1 * 3, 0.1 * 3, 0.0); // a duplicate of point 39, id 145
+  const Index n = static_cast<Index>(c.size() / 3);
+  auto sequence = [&](std::vector<Index> ids) {
+    std::vector<double> xyz;
+    for (Index id : ids)
+    {
+      xyz.insert(xyz.end(), c.begin() + 3 * id, c.begin() + 3 * id + 3);
+    }
+    std::vector<Index> order;
+    asmcore::CanonicalOrderScratch scratch;
+    asmcore::CanonicalOrder(xyz.data(), ids.data(), n, order, scratch);
+    std::vector<std::pair<std::array<double, 3>, Index>> out;
+    for (Index k : order)
+    {
+      out.push_back({ { xyz[3 * k] + 0.0, xyz[3 * k + 1], xyz[3 * k + 2] }, ids[k] });
+    }
+    return out;
+  };
+  std::vector<Index> ids(static_cast<std::size_t>(n));
+  std::iota(ids.begin(), ids.end(), Index(0));
+  const auto reference = sequence(ids);
+  ASSERT_EQ(reference.size(), static_cast<std::size_t>(n));
+  std::set<Index> seen;
+  for (const auto& entry : reference)
+  {
+    seen.insert(entry.second);
+  }
+  EXPECT_EQ(seen.size(), static_cast<std::size_t>(n)) << "a permutation";
+  // The duplicates (points 39 and 145) by id.
+  auto placeOf = [&](Index id) {
+    return std::find_if(
+      reference.begin(), reference.end(), [id](const auto& e) { return e.second == id; });
+  };
+  EXPECT_EQ(placeOf(39) + 1, placeOf(145));
+  for (unsigned seed : { 1u, 2u, 3u })
+  {
+    std::shuffle(ids.begin(), ids.end(), std::mt19937(seed));
+    const auto shuffled = sequence(ids);
+    for (std::size_t k = 0; k < reference.size(); ++k)
+    {
+      ASSERT_EQ(shuffled[k].first, reference[k].first) << "seed " << seed << ", place " << k;
+      // (The two points at x = -0 and +0 may come in either order: the
+      // same position. Every other point keeps its id.)
+      if (reference[k].first[0] != 0.0 || reference[k].first[1] != 0.5)
+      {
+        ASSERT_EQ(shuffled[k].second, reference[k].second) << "seed " << seed << ", place " << k;
+      }
+    }
+  }
 }
 
 TEST(Grid, AutomaticCellSizeHitsTheTargetOccupancy)

@@ -8,7 +8,13 @@ runs). The one-process runs of the serial path (AlwaysDistribute off) must
 agree with the distributed runs too: a cell's result does not depend on the
 order of its points.
 
-One exception: ClusterSize in the paper mode. Points of cells that Eq. 4
+The lattice modes (gridded data, exact ties everywhere) compare as well,
+except Key Point Error's point-to-plane mean, to 1e-3: its planes are fitted
+to the 8 nearest simplified points, and among equidistant ones the nearest
+are chosen by index, which differs with the order the simplified points are
+gathered in.
+
+One exception: ClusterSize in the paper mode (and lattice-paper). Points of cells that Eq. 4
 gives no sample join their nearest sample, and across a process border that
 can be a different neighbouring sample than in a single-process run (the
 sample itself, its position and its averaged arrays, which come from its own
@@ -43,14 +49,18 @@ for mode, group in sorted(modes.items()):
             if name == "ClusterSize":
                 assert a.sum() == b.sum(), "%s: ClusterSize total %d != %d" % (f, b.sum(), a.sum())
                 same = np.mean(a == b)
-                least = 0.9 if mode == "paper" else 1.0
+                least = 0.9 if mode.endswith("paper") else 1.0
                 assert same >= least, "%s: ClusterSize equal on %.1f %% of samples" % (f, 100 * same)
                 continue
             scale = diagonal if c < 3 else max(1.0, np.abs(a).max())
             worst = np.nanmax(np.abs(a - b)) / scale
             assert worst <= TOL, "%s: %s differs by %.3g (relative)" % (f, name, worst)
         for name, v0, v in zip(base["names"], base["values"], run["values"]):
-            assert abs(v - v0) <= TOL * max(1.0, abs(v0)), "%s: %s %r != %r" % (f, name, v, v0)
+            # (Key Point Error's planes on gridded data: 8 nearest samples
+            # among equidistant ones, chosen by index, which differs with
+            # the order the simplified points are gathered in.)
+            tol = 1e-3 if mode.startswith("lattice") and name == "KPE.PointToPlaneMean" else TOL
+            assert abs(v - v0) <= tol * max(1.0, abs(v0)), "%s: %s %r != %r" % (f, name, v, v0)
     print("CheckMPIOutputs: %s mode, %d runs agree (%d points, tolerance %g)"
           % (mode, len(group), ns, TOL))
 if "feature" in modes and "paper" in modes:

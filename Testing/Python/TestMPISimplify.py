@@ -16,6 +16,12 @@ not cover the whole bunny; every refinement at its default:
 FillHoles, whose rankings and removal costs a distributed run gathers over
 all processes, the final Lloyd iterations, whose weights it normalises over
 all processes, and BoundSnappedHoles, which it takes over all processes).
+"lattice-paper" and "lattice-feature": the same two modes (N_s = 2000) on
+gridded data instead of the bunny, whose points tie exactly everywhere: a
+150 x 150 lattice over [-3, 3]^2 with a stepped height z = 0.1 floor(x + y),
+every point twice; each cell is processed in its canonical order
+(asmcore::CanonicalOrder), so the serial path, which reads the points in
+input order, and the distributed runs, which receive them in another, agree.
 Optional third argument "serial": pvbatch started without mpiexec (one
 process, AlwaysDistribute off), so the serial path runs; its output must
 match the distributed runs.
@@ -35,16 +41,23 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
 MODE = sys.argv[2] if len(sys.argv) > 2 else "paper"
-NS = 1800 if MODE == "paper" else 8000
+LATTICE = MODE.startswith("lattice-")
+NS = 2000 if LATTICE else 1800 if MODE == "paper" else 8000
 SERIAL = len(sys.argv) > 3 and sys.argv[3] == "serial"
 controller = vtkMultiProcessController.GetGlobalController()
 rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
 
-reader = vtkPLYReader()
-reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
-reader.Update()
-xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+if LATTICE:
+    u = np.linspace(-3.0, 3.0, 150)
+    gx, gy = np.meshgrid(u, u, indexing="ij")
+    grid = np.column_stack([gx.ravel(), gy.ravel(), 0.1 * np.floor(gx.ravel() + gy.ravel())])
+    xyz = np.concatenate([grid, grid])
+else:
+    reader = vtkPLYReader()
+    reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
+    reader.Update()
+    xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
 # Interleaved split by a hash of the point index, reversed order.
 index = np.arange(len(xyz), dtype=np.uint64)
 owner = ((index * np.uint64(2654435761)) % np.uint64(2 ** 32)) % np.uint64(size)
@@ -67,8 +80,11 @@ if SERIAL:
     assert size == 1, "the serial run is a one-process run"
     assert not any(os.environ.get(v) for v in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE")), \
         "the serial run is started without mpiexec"
-if MODE == "paper":
+if MODE in ("paper", "lattice-paper"):
     asm.SetMode(vtkASMSimplify.PAPER)
+elif LATTICE:
+    assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
+    asm.SetFeatureSamplesPerCell(1.0)
 else:
     assert asm.GetMode() == vtkASMSimplify.FEATURE_PRESERVING and asm.GetFillHoles()
     asm.SetFeatureSamplesPerCell(1.0)
