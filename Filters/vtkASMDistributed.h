@@ -26,15 +26,19 @@
  *    one record per point, with the sending process and point id.
  * 3. A canonical order. A process sorts the points it received by cell key,
  *    then coordinates, then array values, so a cell's points reach the core
- *    in the same order whatever the partition. The serial path orders them
- *    by input id instead (and is left unchanged). The core's per-cell
- *    decisions are made on values, not positions (key points by prominence,
- *    Lloyd seeds by distance; Paper mode's random choice among key clusters
- *    draws them in the order of their extreme points' coordinates), so the
- *    serial path gives the same points as this one (the bunny in input,
- *    reversed or shuffled order: none moves); what remains order-dependent
- *    is exact ties between distinct points (broken by position) and
- *    floating-point summation order. A one-process run started by mpiexec
+ *    in the same order whatever the partition. The core then processes each
+ *    cell's points in the cell's canonical order (asmcore::CanonicalOrder:
+ *    a hash of the coordinates, then x, y, z, then id), a function of the
+ *    points alone, as the serial path does with its points in input order;
+ *    and the per-cell decisions are made on values (key points by
+ *    prominence, Lloyd seeds by distance; Paper mode's random choice among
+ *    key clusters draws them in the order of their extreme points'
+ *    coordinates). So the serial path gives the same points as this one,
+ *    even on gridded clouds whose points tie exactly everywhere (tests:
+ *    the MPI lattice modes, DistributedFeatureHooks.*Lattice*); what
+ *    remains order-dependent is the choice among exact duplicates (by id:
+ *    the same position) and, in Key Point Error, the planes fitted to
+ *    equidistant nearest samples. A one-process run started by mpiexec
  *    takes this path too (LaunchedByMPIRunner: ParaView built with MPI has
  *    a one-process MPI controller even in the built-in session, so the
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
