@@ -335,6 +335,12 @@ private:
   std::uint64_t State;
 };
 
+/// Lexicographic order of two positions: the order-independent tie-break.
+inline bool PositionBefore(const double* a, const double* b)
+{
+  return std::lexicographical_compare(a, a + 3, b, b + 3);
+}
+
 /// A well-mixed 64-bit hash of a point's three coordinates (their bits): a
 /// function of the position alone, whatever the point's id or place in the
 /// input.

@@ -304,14 +304,8 @@ void CanonicalOrder(const double* xyz, const Index* ids, Index n, std::vector<In
     {
       return hash[a] < hash[b];
     }
-    for (int k = 0; k < 3; ++k)
-    {
-      if (xyz[3 * a + k] != xyz[3 * b + k])
-      {
-        return xyz[3 * a + k] < xyz[3 * b + k];
-      }
-    }
-    return ids[a] < ids[b];
+    return PositionBefore(xyz + 3 * a, xyz + 3 * b) ||
+      (!PositionBefore(xyz + 3 * b, xyz + 3 * a) && ids[a] < ids[b]);
   };
   for (Index i = 1; i < n; ++i)
   {

@@ -40,12 +40,6 @@ inline bool NearlyEqual(double a, double b)
   return a == b || (std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-12 * std::max(a, b));
 }
 
-/// Lexicographic order of two positions: the order-independent tie-break.
-inline bool PositionBefore(const double* a, const double* b)
-{
-  return std::lexicographical_compare(a, a + 3, b, b + 3);
-}
-
 /// A cell owning more samples than this is handled with O(n log b) steps
 /// (median-split seeds, a k-d tree of the samples for the assignment)
 /// instead of O(n b) ones, which matters with a large explicit CellSize.

@@ -430,19 +430,10 @@ void Neighbors::KNearestByPosition(const double p[3], int k, std::vector<Index>&
   }
   // Runs of equal distance by position (the answer is sorted by distance,
   // then id: only points as near as each other move).
-  auto before = [&](Index a, Index b) {
-    if (sqDist[a] != sqDist[b])
-    {
-      return sqDist[a] < sqDist[b];
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      if (xyz[3 * a + c] != xyz[3 * b + c])
-      {
-        return xyz[3 * a + c] < xyz[3 * b + c];
-      }
-    }
-    return ids[a] < ids[b];
+  auto before = [&](Index a, Index b) { // (a and b as near)
+    const double* pa = xyz.data() + 3 * a;
+    const double* pb = xyz.data() + 3 * b;
+    return PositionBefore(pa, pb) || (!PositionBefore(pb, pa) && ids[a] < ids[b]);
   };
   for (Index i = 1; i < count; ++i)
   {

@@ -372,6 +372,23 @@ TEST(DistributedFeatureHooks, OptionCombinationsOverSlabs)
   }
 }
 
+// An n x n lattice over [-3, 3]^2, every point twice: flat (variant 0), a
+// smooth height field (1) or one with steps (2).
+namespace
+{
+asmtest::Cloud LatticeTwice(int n, int variant)
+{
+  asmtest::Cloud cloud = asmtest::GridSurface(n, 3.0, [variant](double x, double y) {
+    return variant == 0 ? 0.0
+      : variant == 1    ? 0.3 * std::sin(x) * std::cos(y)
+                        : std::floor(x + y) * 0.1;
+  });
+  const asmtest::Cloud copy = cloud;
+  cloud.insert(cloud.end(), copy.begin(), copy.end());
+  return cloud;
+}
+} // namespace
+
 // Gridded data (a raster's points: a flat lattice, a smooth height field and
 // one with steps), every point twice: exact ties everywhere (equal
 // distances to samples, equal spreads and gaps, duplicate points split
@@ -383,13 +400,7 @@ TEST(DistributedFeatureHooks, LatticeWithDuplicatesOverSlabs)
   p.BoundSnappedHoles = false;
   for (int variant = 0; variant < 3; ++variant)
   {
-    asmtest::Cloud cloud = asmtest::GridSurface(300, 3.0, [variant](double x, double y) {
-      return variant == 0 ? 0.0
-        : variant == 1    ? 0.3 * std::sin(x) * std::cos(y)
-                          : std::floor(x + y) * 0.1;
-    });
-    const asmtest::Cloud copy = cloud;
-    cloud.insert(cloud.end(), copy.begin(), copy.end()); // every point twice
+    const asmtest::Cloud cloud = LatticeTwice(300, variant);
     for (Index ns : { Index(2000), Index(18000) })
     {
       p.NumberOfSamples = ns;
@@ -411,13 +422,7 @@ TEST(DistributedFeatureHooks, ResultOnALatticeWithDuplicatesDoesNotDependOnPoint
 {
   for (int variant = 0; variant < 3; ++variant)
   {
-    asmtest::Cloud cloud = asmtest::GridSurface(150, 3.0, [variant](double x, double y) {
-      return variant == 0 ? 0.0
-        : variant == 1    ? 0.3 * std::sin(x) * std::cos(y)
-                          : std::floor(x + y) * 0.1;
-    });
-    const asmtest::Cloud copy = cloud;
-    cloud.insert(cloud.end(), copy.begin(), copy.end());
+    const asmtest::Cloud cloud = LatticeTwice(150, variant);
     const std::vector<Index> ids = asmtest::AllIds(cloud);
     for (asmcore::SimplifyMode mode :
       { asmcore::SimplifyMode::FeaturePreserving, asmcore::SimplifyMode::Paper })
