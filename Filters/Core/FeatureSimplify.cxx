@@ -180,44 +180,28 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   }
   // Every later pass reads the points cell by cell: a copy in cell order
   // (slot i holds point original.Order[i]) keeps those reads sequential,
-  // each cell's points in its canonical order (PutInCanonicalOrder: the
-  // result does not depend on the input's order). Of the input's type: a
+  // each cell's points in its canonical order (CanonicalCell: the result
+  // does not depend on the input's order). Of the input's type: a
   // float cloud's copy is floats (12 bytes per point). (Left uninitialised:
   // the parallel copy takes the page faults.)
   std::unique_ptr<double[]> cellDoubles;
   std::unique_ptr<float[]> cellFloats;
-  const auto copyInCellOrder = [&](auto* to, const auto* from) {
-    using T = std::remove_const_t<std::remove_pointer_t<decltype(from)>>;
+  const auto copyInCellOrder = [&](auto* to) {
+    using T = std::remove_pointer_t<decltype(to)>;
     execution.Run(0, original.NumberOfCells(), [&](Index b, Index e) {
-      std::vector<double> gathered;
-      std::vector<Index> ids, order;
-      CanonicalOrderScratch scratch;
+      CanonicalCell local;
       for (Index c = b; c < e; ++c)
       {
         const Index first = original.CellStart[c], n = original.CellSizeOf(c);
         Index* cellIds = original.Order.data() + first;
-        gathered.resize(static_cast<std::size_t>(3 * n));
-        for (Index i = 0; i < n; ++i)
-        {
-          if (first + i + 16 < total)
-          {
-            Prefetch(from + 3 * cellIds[i + 16]);
-          }
-          for (int a = 0; a < 3; ++a)
-          {
-            gathered[3 * i + a] = static_cast<double>(from[3 * cellIds[i] + a]);
-          }
-        }
-        CanonicalOrder(gathered.data(), cellIds, n, order, scratch);
-        ids.assign(cellIds, cellIds + n);
+        local.Gather(xyz, cellIds, n);
         for (Index k = 0; k < n; ++k)
         {
-          const Index i = order[k];
           for (int a = 0; a < 3; ++a)
           {
-            to[3 * (first + k) + a] = static_cast<T>(gathered[3 * i + a]);
+            to[3 * (first + k) + a] = static_cast<T>(local.Xyz[3 * k + a]);
           }
-          cellIds[k] = ids[i];
+          cellIds[k] = local.Ids[k];
         }
       }
     });
@@ -225,12 +209,12 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   if (xyz.Floats)
   {
     cellFloats.reset(new float[static_cast<std::size_t>(3 * total)]);
-    copyInCellOrder(cellFloats.get(), xyz.Floats);
+    copyInCellOrder(cellFloats.get());
   }
   else
   {
     cellDoubles.reset(new double[static_cast<std::size_t>(3 * total)]);
-    copyInCellOrder(cellDoubles.get(), xyz.Doubles);
+    copyInCellOrder(cellDoubles.get());
   }
   // (released before the output)
   Coordinates P = xyz.Floats ? Coordinates(cellFloats.get()) : Coordinates(cellDoubles.get());
