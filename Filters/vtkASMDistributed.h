@@ -37,8 +37,8 @@
  *    even on gridded clouds whose points tie exactly everywhere (tests:
  *    the MPI lattice modes, DistributedFeatureHooks.*Lattice*); what
  *    remains order-dependent is the choice among exact duplicates (by id:
- *    the same position) and, in Key Point Error, the planes fitted to
- *    equidistant nearest samples. A one-process run started by mpiexec
+ *    the same position). (Key Point Error chooses among equidistant
+ *    nearest samples by position too.) A one-process run started by mpiexec
  *    takes this path too (LaunchedByMPIRunner: ParaView built with MPI has
  *    a one-process MPI controller even in the built-in session, so the
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;

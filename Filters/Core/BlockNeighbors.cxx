@@ -44,31 +44,31 @@ inline bool Finite(const double* p)
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
-// The k smallest (squared distance, id) pairs, sorted, as the tree keeps
-// them (SortedKnn in Neighbors.cxx: the same insertion, in the same order,
-// NeighborPrecedes), with where each is among the candidates.
+// The k least candidates by (squared distance, position, id), sorted, as
+// Neighbors::KNearestByPosition ranks them; `Xyz` holds the candidates'
+// points side by side, and Slots where each kept one is among them.
 class KBest
 {
 public:
-  void Reset(int k)
+  void Reset(int k, const double* xyz)
   {
     this->K = k;
     this->Count = 0;
+    this->Xyz = xyz;
     this->Ids.resize(static_cast<std::size_t>(k));
     this->D.resize(static_cast<std::size_t>(k));
     this->Slots.resize(static_cast<std::size_t>(k));
   }
   bool Full() const { return this->Count == this->K; }
   double Worst() const { return this->D[static_cast<std::size_t>(this->K - 1)]; }
-  bool Accepts(double d, Index id) const
+  bool Accepts(double d, Index id, std::size_t slot) const
   {
-    return this->Count < this->K ||
-      NeighborPrecedes(d, id, this->Worst(), this->Ids[static_cast<std::size_t>(this->K - 1)]);
+    return this->Count < this->K || this->Precedes(d, id, slot, static_cast<std::size_t>(this->K - 1));
   }
   void Add(double d, Index id, std::size_t slot)
   {
     std::size_t i = static_cast<std::size_t>(this->Count < this->K ? this->Count++ : this->K - 1);
-    while (i > 0 && NeighborPrecedes(d, id, this->D[i - 1], this->Ids[i - 1]))
+    while (i > 0 && this->Precedes(d, id, slot, i - 1))
     {
       this->D[i] = this->D[i - 1];
       this->Ids[i] = this->Ids[i - 1];
@@ -84,8 +84,20 @@ public:
   std::vector<std::size_t> Slots; // where each is among the candidates
 
 private:
+  // Whether candidate (d, id, slot) ranks before the kept one at i.
+  bool Precedes(double d, Index id, std::size_t slot, std::size_t i) const
+  {
+    if (d != this->D[i])
+    {
+      return d < this->D[i];
+    }
+    const double* a = this->Xyz + 3 * slot;
+    const double* b = this->Xyz + 3 * this->Slots[i];
+    return PositionBefore(a, b) || (!PositionBefore(b, a) && id < this->Ids[i]);
+  }
   int K = 0;
   int Count = 0;
+  const double* Xyz = nullptr;
 };
 
 // The median k-th neighbour distance of up to Probes queries spread evenly
@@ -133,7 +145,7 @@ struct BlockScratch
 void SearchOne(Index query, const double* p, const Neighbors& surface, int k,
   const KNearestVisit& visit, BlockScratch& s)
 {
-  surface.KNearest(p, k, s.Ids, s.Sq, s.NearXyz);
+  surface.KNearestByPosition(p, k, s.Ids, s.Sq, s.NearXyz);
   visit(KNearestAnswer{ query, p, s.Ids, s.Sq, s.NearXyz.data() });
 }
 
@@ -189,12 +201,12 @@ void SearchBlock(const double* q, const Index* slots, Index m, const Neighbors& 
     // among p's k nearest; the candidates come sorted by |x - c|.
     const double offset = std::sqrt(TreeSquaredDistance(p, c)) * (1.0 + Slack);
     double cutoff = std::numeric_limits<double>::infinity();
-    s.Best.Reset(k);
+    s.Best.Reset(k, s.CandidateXyz.data());
     for (std::size_t x = 0; x < count && s.CandidateReach[x] - offset <= cutoff; ++x)
     {
       const double d = TreeSquaredDistance(s.CandidateXyz.data() + 3 * x, p);
       const Index id = s.Candidates[x];
-      if (s.Best.Accepts(d, id))
+      if (s.Best.Accepts(d, id, x))
       {
         s.Best.Add(d, id, x);
         if (s.Best.Full())

@@ -14,9 +14,12 @@
  * query ranks them itself, skipping those farther from c than its k-th
  * distance plus |q - c|.
  *
- * The answers are those of Neighbors::KNearest, bit for bit: the squared
- * distances are evaluated as the tree evaluates them, and the k smallest
- * (squared distance, id) pairs are kept in the same order. Blocks pay when
+ * The answers are those of Neighbors::KNearestByPosition, bit for bit: the
+ * squared distances are evaluated as the tree evaluates them, and the k
+ * least (squared distance, position, id) are kept in the same order. Among
+ * equally near points the choice goes by position, so that it does not
+ * depend on the ids (the order a simplified cloud was gathered in: MPI
+ * runs with different process counts). Blocks pay when
  * the queries are denser than the cloud (an original against its
  * simplification: tens of queries per block); sparser queries are searched
  * one by one, in the grid's order (a spatially coherent walk of the tree).
@@ -34,7 +37,8 @@ namespace asmcore
 class Neighbors;
 
 /// What a query's visit receives: its position in the query list, its
-/// point, and its nearest points (ids sorted by squared distance, then id;
+/// point, and its nearest points (ids sorted by squared distance, then
+/// position, then id;
 /// their coordinates side by side, 3 per id, from the tree's own copies).
 struct KNearestAnswer
 {
@@ -52,7 +56,7 @@ using KNearestVisitMaker = std::function<KNearestVisit()>;
 
 /// For each position i of `ids` whose point xyz[3 * ids[i]] is finite: a
 /// visit (Query i) with the min(k, surface.Size()) points of `surface` nearest
-/// it, exactly as surface.KNearest gives them. The visits run on
+/// it, exactly as surface.KNearestByPosition gives them. The visits run on
 /// `execution`'s threads, in no fixed order; each query is visited once,
 /// and what a visit receives does not depend on the thread count. k <= 0 or
 /// an empty surface: no visit.

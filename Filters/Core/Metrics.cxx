@@ -129,8 +129,8 @@ Plane FitPlane(const double* xyz, std::size_t count)
 // a block often have the same k nearest (at 5 %, 62 % of an original
 // cloud's queries against its ASM simplification; 88 % at 1 %, 30 % at
 // 20 %), and a plane depends on the set alone: it is fitted to the points
-// in ascending id order, whichever query comes first, so that a kept plane
-// is the one a fit would give. Direct-mapped by a hash of the sorted ids;
+// in position order, whichever query comes first, so that a kept plane is
+// the one a fit would give. Direct-mapped by a hash of the sorted ids;
 // sets of more than MaxIds points, or with an id twice, are not kept.
 class PlaneFits
 {
@@ -167,13 +167,22 @@ public:
     }
     if (!same)
     {
-      // The points in ascending id order (an id's first place in the answer).
+      // The points in position order (ties: id), so that the plane does
+      // not depend on the ids (the order a simplified cloud was gathered in).
+      this->Order.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        std::size_t j = i;
+        for (; j > 0 && Before(a, i, this->Order[j - 1]); --j)
+        {
+          this->Order[j] = this->Order[j - 1];
+        }
+        this->Order[j] = i;
+      }
       this->Xyz.resize(3 * n);
       for (std::size_t i = 0; i < n; ++i)
       {
-        const std::size_t j = static_cast<std::size_t>(
-          std::find(a.Ids.begin(), a.Ids.end(), this->Sorted[i]) - a.Ids.begin());
-        CopyPoint(a.Xyz + 3 * j, this->Xyz.data() + 3 * i);
+        CopyPoint(a.Xyz + 3 * this->Order[i], this->Xyz.data() + 3 * i);
       }
       const Plane fit = FitPlane(this->Xyz.data(), n);
       if (!keep)
@@ -199,6 +208,14 @@ private:
     Index Ids[MaxIds];
     Plane Fit;
   };
+  // Whether neighbour i of the answer comes before neighbour j: by
+  // position, then id.
+  static bool Before(const KNearestAnswer& a, std::size_t i, std::size_t j)
+  {
+    const double* p = a.Xyz + 3 * i;
+    const double* q = a.Xyz + 3 * j;
+    return PositionBefore(p, q) || (!PositionBefore(q, p) && a.Ids[i] < a.Ids[j]);
+  }
   static double DistanceTo(const Plane& plane, const double* p)
   {
     return std::abs(plane.Normal[0] * (p[0] - plane.Centroid[0]) +
@@ -206,6 +223,7 @@ private:
   }
   std::vector<Entry> Table = std::vector<Entry>(Slots);
   std::vector<Index> Sorted;
+  std::vector<std::size_t> Order;
   std::vector<double> Xyz;
 };
 } // namespace

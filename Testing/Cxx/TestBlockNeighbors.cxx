@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // ForEachKNearest (the metrics' k-nearest queries in blocks) gives, for every
-// finite query, exactly what Neighbors::KNearest gives: the same ids in the
-// same order with the same squared distances, ties by id included, whatever
-// the order of the ids and the thread count.
+// finite query, exactly what Neighbors::KNearestByPosition gives: the same ids
+// in the same order with the same squared distances, ties by position then
+// id included, whatever the order of the ids and the thread count.
 #include "Core/BlockNeighbors.h"
 #include "Core/Grid.h"
 #include "Core/Neighbors.h"
@@ -73,7 +73,8 @@ void ExpectTreeAnswers(const Cloud& queries, asmcore::IdView ids, const Cloud& s
     {
       continue;
     }
-    tree.KNearest(p, k, near, sq);
+    std::vector<double> xyz;
+    tree.KNearestByPosition(p, k, near, sq, xyz);
     ASSERT_EQ(near, answers[i].Ids) << "query " << i;
     ASSERT_EQ(sq, answers[i].Sq) << "query " << i;
   }
@@ -156,11 +157,12 @@ TEST(BlockNeighbors, ListedIdsInAnyOrderAndNonFiniteQueries)
   }
 }
 
-TEST(BlockNeighbors, TiesAreBrokenByIdAsInTheTree)
+namespace
 {
-  // A lattice of points, each three times (ids far apart), and queries on
-  // lattice points and halfway between them: many equal distances.
-  Cloud surface, queries;
+// A 20 x 20 lattice, each point three times (ids far apart), and queries on
+// lattice points and between them: many equal distances.
+void TiedLattice(Cloud& surface, Cloud& queries)
+{
   for (int copy = 0; copy < 3; ++copy)
   {
     for (int i = 0; i < 20; ++i)
@@ -178,7 +180,67 @@ TEST(BlockNeighbors, TiesAreBrokenByIdAsInTheTree)
       asmtest::Add(queries, 0.025 * i, 0.025 * j, (i + j) % 3 == 0 ? 0.0 : 0.01);
     }
   }
+}
+} // namespace
+
+TEST(BlockNeighbors, TiesAreBrokenByPositionAsInTheTree)
+{
+  Cloud surface, queries;
+  TiedLattice(surface, queries);
   ExpectTreeAnswersAt(surface, queries, { 2, 5, 8 });
+}
+
+TEST(BlockNeighbors, TiedNeighboursDoNotDependOnTheIds)
+{
+  // The same lattice with its points in another order (a simplified cloud
+  // gathered from a different number of processes): for every query, the
+  // same neighbours' points in the same order, in blocks and one by one.
+  Cloud surface, queries;
+  TiedLattice(surface, queries);
+  const Index n = static_cast<Index>(surface.size() / 3);
+  std::vector<Index> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), Index(0));
+  std::mt19937_64 rng(21);
+  std::shuffle(order.begin(), order.end(), rng);
+  Cloud shuffled;
+  for (Index id : order)
+  {
+    asmtest::Add(shuffled, surface[3 * id], surface[3 * id + 1], surface[3 * id + 2]);
+  }
+  const asmcore::Neighbors tree(surface.data(), asmtest::AllIds(surface));
+  const asmcore::Neighbors other(shuffled.data(), asmtest::AllIds(shuffled));
+  // All queries (in blocks), and every 40th (sparser than the lattice: one by one).
+  std::vector<Index> sparse;
+  for (Index i = 0; i < static_cast<Index>(queries.size() / 3); i += 40)
+  {
+    sparse.push_back(i);
+  }
+  const std::vector<Index> all = asmtest::AllIds(queries);
+  for (const std::vector<Index>* ids : { &all, static_cast<const std::vector<Index>*>(&sparse) })
+  {
+    for (int k : { 3, 8 })
+    {
+      const auto a = Visit(queries, *ids, surface, tree, k, {});
+      const auto b = Visit(queries, *ids, shuffled, other, k, {});
+      int tied = 0;
+      for (std::size_t i = 0; i < ids->size(); ++i)
+      {
+        ASSERT_EQ(a[i].Sq, b[i].Sq) << "query " << i;
+        for (std::size_t j = 0; j < a[i].Ids.size(); ++j)
+        {
+          const double* x = surface.data() + 3 * a[i].Ids[j];
+          const double* y = shuffled.data() + 3 * b[i].Ids[j];
+          ASSERT_TRUE(std::equal(x, x + 3, y)) << "query " << i << ", neighbour " << j;
+        }
+        // (A choice among equally near points: the (k+1)-th as near as the k-th.)
+        std::vector<Index> near;
+        std::vector<double> sq;
+        tree.KNearest(queries.data() + 3 * (*ids)[i], k + 1, near, sq);
+        tied += sq[static_cast<std::size_t>(k)] == sq[static_cast<std::size_t>(k - 1)] ? 1 : 0;
+      }
+      EXPECT_GT(tied, static_cast<int>(ids->size() / 10)) << "(the lattice must give ties)";
+    }
+  }
 }
 
 TEST(BlockNeighbors, SmallSurfaces)

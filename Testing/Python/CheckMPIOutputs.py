@@ -8,11 +8,10 @@ runs). The one-process runs of the serial path (AlwaysDistribute off) must
 agree with the distributed runs too: a cell's result does not depend on the
 order of its points.
 
-The lattice modes (gridded data, exact ties everywhere) compare as well,
-except Key Point Error's point-to-plane mean, to 1e-3: its planes are fitted
-to the 8 nearest simplified points, and among equidistant ones the nearest
-are chosen by index, which differs with the order the simplified points are
-gathered in.
+The lattice modes (gridded data, exact ties everywhere) compare the same
+way: Key Point Error's planes are fitted to the 8 nearest simplified points,
+chosen among equidistant ones by position, not by the order the simplified
+points were gathered in.
 
 One exception: ClusterSize in the paper mode (and lattice-paper). Points of cells that Eq. 4
 gives no sample join their nearest sample, and across a process border that
@@ -56,11 +55,7 @@ for mode, group in sorted(modes.items()):
             worst = np.nanmax(np.abs(a - b)) / scale
             assert worst <= TOL, "%s: %s differs by %.3g (relative)" % (f, name, worst)
         for name, v0, v in zip(base["names"], base["values"], run["values"]):
-            # (Key Point Error's planes on gridded data: 8 nearest samples
-            # among equidistant ones, chosen by index, which differs with
-            # the order the simplified points are gathered in.)
-            tol = 1e-3 if mode.startswith("lattice") and name == "KPE.PointToPlaneMean" else TOL
-            assert abs(v - v0) <= tol * max(1.0, abs(v0)), "%s: %s %r != %r" % (f, name, v, v0)
+            assert abs(v - v0) <= TOL * max(1.0, abs(v0)), "%s: %s %r != %r" % (f, name, v, v0)
     print("CheckMPIOutputs: %s mode, %d runs agree (%d points, tolerance %g)"
           % (mode, len(group), ns, TOL))
 if "feature" in modes and "paper" in modes:
