@@ -40,6 +40,7 @@ set(ASM_FILTERS_CORE
   Covering
   SnappedHoles
   FeatureOutput
+  FeatureRefine
   FeatureSimplify
   Neighbors
   BlockNeighbors

@@ -22,8 +22,9 @@
  *     in a cell of two or more samples with ReserveFreeSample), then the
  *     free samples by farthest-point seeding and LloydIterations Lloyd
  *     iterations inside the cell with the key samples fixed (Lloyd.h);
- *  5. cross-cell refinement: CrossCellIterations Lloyd iterations across cell
- *     borders; optionally (FillHoles) a bounded hole-filling pass; with
+ *  5. cross-cell refinement (FeatureRefine.h): CrossCellIterations Lloyd
+ *     iterations across cell borders; optionally (FillHoles) a bounded
+ *     hole-filling pass; with
  *     input-point samples, CoveringRounds rounds of covering refinement
  *     (Covering.h); FinalLloydIterations Lloyd iterations across cell
  *     borders; then every point joins its nearest sample (the sample's
