@@ -6,6 +6,7 @@
 #include "vtkASMDistributed.h"
 
 #include "Core/Budget.h"
+#include "Core/CanonicalOrder.h"
 #include "Core/CellSize.h"
 #include "Core/CellFrame.h"
 #include "Core/Grid.h"

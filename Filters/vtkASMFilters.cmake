@@ -22,6 +22,7 @@ set(ASM_FILTERS_CLASSES
 # on what the tests use: the module is built with hidden symbol visibility.
 set(ASM_FILTERS_CORE
   Grid
+  CanonicalOrder
   CellPartition
   CellSize
   CellFrame

@@ -3,6 +3,7 @@
 
 #include "Assignment.h"
 #include "Budget.h"
+#include "CanonicalOrder.h"
 #include "CellFrame.h"
 #include "CellNeighbors.h"
 #include "FeatureKeyPoints.h"

@@ -2,6 +2,7 @@
 #include "Metrics.h"
 
 #include "BlockNeighbors.h"
+#include "CanonicalOrder.h"
 #include "CellFrame.h"
 #include "CellSize.h"
 #include "Neighbors.h"

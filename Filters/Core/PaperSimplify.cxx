@@ -2,6 +2,7 @@
 #include "PaperSimplify.h"
 
 #include "Budget.h"
+#include "CanonicalOrder.h"
 #include "CellFrame.h"
 #include "KeyPoints.h"
 #include "Unclaimed.h"

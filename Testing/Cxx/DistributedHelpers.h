@@ -4,6 +4,7 @@
 #ifndef asm_test_DistributedHelpers_h
 #define asm_test_DistributedHelpers_h
 
+#include "Core/CanonicalOrder.h"
 #include "Core/CellFrame.h"
 #include "Core/Grid.h"
 #include "Core/Simplify.h"

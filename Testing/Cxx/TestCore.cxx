@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of the ASM core (no VTK): grid, PCA frame, budgets, key points.
 #include "Core/Budget.h"
+#include "Core/CanonicalOrder.h"
 #include "Core/CellFrame.h"
 #include "Core/CellSize.h"
 #include "Core/Grid.h"
