@@ -93,7 +93,7 @@ private:
     }
     const double* a = this->Xyz + 3 * slot;
     const double* b = this->Xyz + 3 * this->Slots[i];
-    return PositionBefore(a, b) || (!PositionBefore(b, a) && id < this->Ids[i]);
+    return PositionThenIdBefore(a, id, b, this->Ids[i]);
   }
   int K = 0;
   int Count = 0;

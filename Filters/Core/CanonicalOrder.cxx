@@ -66,8 +66,7 @@ void CanonicalOrder(const double* xyz, const Index* ids, Index n, std::vector<In
     {
       return hash[a] < hash[b];
     }
-    return PositionBefore(xyz + 3 * a, xyz + 3 * b) ||
-      (!PositionBefore(xyz + 3 * b, xyz + 3 * a) && ids[a] < ids[b]);
+    return PositionThenIdBefore(xyz + 3 * a, ids[a], xyz + 3 * b, ids[b]);
   };
   for (Index i = 1; i < n; ++i)
   {

@@ -341,6 +341,13 @@ inline bool PositionBefore(const double* a, const double* b)
   return std::lexicographical_compare(a, a + 3, b, b + 3);
 }
 
+/// Point (a, idA) before point (b, idB): by position, then, between exact
+/// duplicates, by id.
+inline bool PositionThenIdBefore(const double* a, Index idA, const double* b, Index idB)
+{
+  return PositionBefore(a, b) || (!PositionBefore(b, a) && idA < idB);
+}
+
 /// A well-mixed 64-bit hash of a point's three coordinates (their bits): a
 /// function of the position alone, whatever the point's id or place in the
 /// input.

@@ -45,8 +45,7 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
         if (tie && nearest >= 0)
         {
           const std::array<double, 3> y = P.At(nearest);
-          if (PositionBefore(x, y.data()) ||
-            (!PositionBefore(y.data(), x) && idOf[first[m]] < idOf[nearest]))
+          if (PositionThenIdBefore(x, idOf[first[m]], y.data(), idOf[nearest]))
           {
             bestD = d;
             nearest = first[m];

@@ -209,13 +209,10 @@ private:
     Index Ids[MaxIds];
     Plane Fit;
   };
-  // Whether neighbour i of the answer comes before neighbour j: by
-  // position, then id.
+  // Whether neighbour i of the answer comes before neighbour j.
   static bool Before(const KNearestAnswer& a, std::size_t i, std::size_t j)
   {
-    const double* p = a.Xyz + 3 * i;
-    const double* q = a.Xyz + 3 * j;
-    return PositionBefore(p, q) || (!PositionBefore(q, p) && a.Ids[i] < a.Ids[j]);
+    return PositionThenIdBefore(a.Xyz + 3 * i, a.Ids[i], a.Xyz + 3 * j, a.Ids[j]);
   }
   static double DistanceTo(const Plane& plane, const double* p)
   {

@@ -433,7 +433,7 @@ void Neighbors::KNearestByPosition(const double p[3], int k, std::vector<Index>&
   auto before = [&](Index a, Index b) { // (a and b as near)
     const double* pa = xyz.data() + 3 * a;
     const double* pb = xyz.data() + 3 * b;
-    return PositionBefore(pa, pb) || (!PositionBefore(pb, pa) && ids[a] < ids[b]);
+    return PositionThenIdBefore(pa, ids[a], pb, ids[b]);
   };
   for (Index i = 1; i < count; ++i)
   {
