@@ -74,7 +74,8 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
 
 /// d[l] = |p - (x[l], y[l], z[l])|^2 for l < 4, rounded as SquaredDistance
 /// rounds ((dx^2 + dy^2) + dz^2): the same values, two at a time.
-inline void FourSquaredDistances(const double p[3], const double* x, const double* y, const double* z, double d[4])
+inline void FourSquaredDistances(
+  const double p[3], const double* x, const double* y, const double* z, double d[4])
 {
 #if defined(__SSE2__)
   const __m128d px = _mm_set1_pd(p[0]), py = _mm_set1_pd(p[1]), pz = _mm_set1_pd(p[2]);
@@ -107,7 +108,8 @@ struct SampleBlocks
   std::vector<Index> Sample;
 
   /// From (squared gap, sample) pairs.
-  void Fill(const std::vector<std::pair<double, Index>>& list, const double* pos, const double* scale)
+  void Fill(
+    const std::vector<std::pair<double, Index>>& list, const double* pos, const double* scale)
   {
     const std::size_t n = list.size();
     const std::size_t padded = (n + Lanes - 1) / Lanes * Lanes;

@@ -63,7 +63,8 @@ public:
   double Worst() const { return this->D[static_cast<std::size_t>(this->K - 1)]; }
   bool Accepts(double d, Index id, std::size_t slot) const
   {
-    return this->Count < this->K || this->Precedes(d, id, slot, static_cast<std::size_t>(this->K - 1));
+    return this->Count < this->K ||
+      this->Precedes(d, id, slot, static_cast<std::size_t>(this->K - 1));
   }
   void Add(double d, Index id, std::size_t slot)
   {
