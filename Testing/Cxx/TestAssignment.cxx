@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// AssignToSamples, the default mode's nearest-sample passes, against a brute
+// force search: every point joins the sample of least (weighted) squared
+// distance among those owned by its cell and the neighbouring cells, ties
+// going to the lower sample index, plain and weighted, with one thread and
+// with two. On an integer lattice the ties are exact and everywhere, so the
+// pruning and the blocks of four candidates must not change which of
+// equally near samples wins.
+#include "Core/Assignment.h"
+#include "Core/CellNeighbors.h"
+#include "Core/Grid.h"
+#include "Core/Lloyd.h"
+
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+using asmcore::Index;
+using asmtest::Cloud;
+
+namespace
+{
+// Samples on points of each cell: cell c owns c % 5 of them (none to four,
+// so that some rings are thin), spread over the cell's points.
+asmcore::SampleSet SamplesOnPoints(const Cloud& c, const asmcore::CellGrid& grid)
+{
+  asmcore::SampleSet samples;
+  const Index cells = grid.NumberOfCells();
+  samples.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (Index cell = 0; cell < cells; ++cell)
+  {
+    const Index n = std::min<Index>(cell % 5, grid.CellSizeOf(cell));
+    for (Index k = 0; k < n; ++k)
+    {
+      const double* p = c.data() + 3 * grid.CellPoints(cell)[k * grid.CellSizeOf(cell) / n];
+      samples.Position.insert(samples.Position.end(), p, p + 3);
+      samples.Fixed.push_back(0);
+    }
+    samples.Start[cell + 1] = samples.Start[cell] + n;
+  }
+  return samples;
+}
+
+// The brute force answer for slot i of cell `cell`, and whether another
+// sample of the ring is exactly as near.
+std::pair<Index, bool> NearestInRing(const Cloud& c, const asmcore::CellGrid& grid,
+  const asmcore::CellNeighborTable& neighbors, const asmcore::SampleSet& samples, Index cell,
+  Index i, const double* scale)
+{
+  const double* p = c.data() + 3 * grid.PointAt(i);
+  Index best = -1;
+  double bestD = std::numeric_limits<double>::infinity();
+  bool tie = false;
+  for (int k = 0; k < 27; ++k)
+  {
+    const Index nb = neighbors.Of(cell)[k];
+    for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+    {
+      double d = asmcore::SquaredDistance(p, samples.Position.data() + 3 * s);
+      if (scale)
+      {
+        d *= scale[s];
+      }
+      if (d < bestD || (d == bestD && s < best))
+      {
+        tie = d == bestD;
+        bestD = d;
+        best = s;
+      }
+      else if (d == bestD)
+      {
+        tie = true;
+      }
+    }
+  }
+  return { best, tie };
+}
+
+// Every point's assignment, plain and weighted, with one and two threads,
+// is the brute force answer; returns the number of points with a tie.
+Index ExpectNearestRingSamples(const Cloud& c, double h)
+{
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, h);
+  const asmcore::CellGrid& grid = gridded.Grid;
+  const asmcore::SampleSet samples = SamplesOnPoints(c, grid);
+  // Weights 1, 1.5 and 2: exact products, so weighted ties stay exact.
+  std::vector<double> scale(static_cast<std::size_t>(samples.Size()));
+  for (Index s = 0; s < samples.Size(); ++s)
+  {
+    scale[s] = 1.0 + 0.5 * static_cast<double>(s % 3);
+  }
+  Index ties = 0;
+  const double* const plain = nullptr;
+  const double* const weighted = scale.data();
+  for (const double* weights : { plain, weighted })
+  {
+    asmcore::PointArray<asmcore::SampleId> serial, threaded;
+    asmcore::AssignToSamples(c.data(), grid, gridded.Neighbors, samples, serial, {}, weights);
+    asmcore::AssignToSamples(c.data(), grid, gridded.Neighbors, samples, threaded,
+      asmtest::UnevenTwoThreads(), weights);
+    EXPECT_EQ(serial, threaded);
+    for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
+    {
+      for (Index i = grid.CellStart[cell]; i < grid.CellStart[cell + 1]; ++i)
+      {
+        const auto expected = NearestInRing(c, grid, gridded.Neighbors, samples, cell, i, weights);
+        EXPECT_EQ(expected.first, serial[i]) << "slot " << i << (weights ? " (weighted)" : "");
+        if (expected.first != serial[i])
+        {
+          return ties; // (one message is enough)
+        }
+        ties += expected.second ? 1 : 0;
+      }
+    }
+  }
+  return ties;
+}
+} // namespace
+
+TEST(Assignment, NearestRingSampleOnALatticeWithTies)
+{
+  // A 40 x 40 integer lattice on two levels (z = (i + j) % 2) in cells of
+  // about 4 x 4 points: samples on lattice points, many points exactly
+  // between two or four of them.
+  Cloud c;
+  for (int i = 0; i < 40; ++i)
+  {
+    for (int j = 0; j < 40; ++j)
+    {
+      asmtest::Add(c, i, j, (i + j) % 2);
+    }
+  }
+  const Index ties = ExpectNearestRingSamples(c, 4.0);
+  EXPECT_GT(ties, 300) << "(the lattice must give equally near samples)";
+}
+
+TEST(Assignment, NearestRingSampleOnASphere)
+{
+  const Cloud c = asmtest::Sphere(20000, 1.0, 5);
+  ExpectNearestRingSamples(c, 0.2);
+}
