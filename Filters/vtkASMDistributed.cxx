@@ -259,4 +259,34 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   }
   return share;
 }
+
+void RunOnShare(const SimplifyShare& share, asmcore::SimplifyParameters& parameters)
+{
+  parameters.Grid = &share.Grid;
+  parameters.Cells = &share.Cloud.Cells;
+  if (parameters.Mode == asmcore::SimplifyMode::Paper)
+  {
+    parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };
+  }
+  else
+  {
+    // Halo cells are simplified too, with their true budgets, as context
+    // for the cross-cell steps; only the owned cells' samples are output.
+    parameters.CellBudget = [&share](std::uint64_t key) { return share.TrueBudgetOf(key); };
+    parameters.OutputCell = [&share](std::uint64_t key) { return share.Owns(key); };
+  }
+  parameters.CloudCentroid = share.Centroid;
+}
+
+void CombineFigures(const Communication& comm, const SimplifyShare& share,
+  asmcore::SimplifyResult& result)
+{
+  const Index keys = comm.Sum(result.NumberOfKeyPoints);
+  const double sum = comm.Sum(result.AKPE * static_cast<double>(result.NumberOfKeyPoints));
+  result.MKPE = comm.Max(result.MKPE);
+  result.AKPE = keys > 0 ? sum / static_cast<double>(keys) : 0.0;
+  result.NumberOfKeyPoints = keys;
+  result.CellSize = share.Grid.CellSize;
+  result.Aborted = comm.Max(result.Aborted ? 1.0 : 0.0) > 0.0;
+}
 } // namespace asmvtk

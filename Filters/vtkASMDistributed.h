@@ -338,6 +338,19 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   asmcore::IdView ids, const asmcore::SimplifyParameters& parameters,
   const asmcore::Execution& execution = {});
 
+/// Points the core's run at this process's share: its grid and cells, the
+/// budgets (paper mode: of the owned cells, halo cells left without
+/// samples; feature mode: every cell's true budget, the halo cells as
+/// context, only the owned cells output) and the whole cloud's centroid.
+/// `share` must outlive the run.
+void RunOnShare(const SimplifyShare& share, asmcore::SimplifyParameters& parameters);
+
+/// Collective, after the core's run: the key point figures of the whole
+/// cloud in `result` (sums and maxima over the processes), the grid's cell
+/// size, and whether any process aborted.
+void CombineFigures(const Communication& comm, const SimplifyShare& share,
+  asmcore::SimplifyResult& result);
+
 /// Drops from `ids` the points flagged as duplicates of another process's
 /// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which
 /// holds the others. Without a ghost array nothing changes (no copy).

@@ -51,10 +51,12 @@ set(ASM_FILTERS_CORE
 # Private VTK-layer helpers (not wrapped, not installed): <Name>.h + <Name>.cxx
 # in Filters/. vtkASMPointDataAggregation: the attribute aggregation;
 # vtkASMCompositeInput: a composite input's leaves as one cloud;
+# vtkASMSimplifySteps: vtkASMSimplify's parameters, input normals and output;
 # vtkASMDistributed*: the MPI communication (VTK::ParallelCore).
 set(ASM_FILTERS_PRIVATE
   vtkASMPointDataAggregation
   vtkASMCompositeInput
+  vtkASMSimplifySteps
   vtkASMDistributed
   vtkASMDistributedMetrics
 )

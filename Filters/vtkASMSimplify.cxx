@@ -3,22 +3,16 @@
 
 #include "Core/CellNeighbors.h"
 #include "Core/Grid.h"
-#include "vtkASMDistributed.h"
-#include "Core/Neighbors.h"
 #include "Core/Simplify.h"
+#include "vtkASMDistributed.h"
 #include "vtkASMCompositeInput.h"
 #include "vtkASMFilterUtilities.h"
 #include "vtkASMPointDataAggregation.h"
+#include "vtkASMSimplifySteps.h"
 
-#include "vtkAOSDataArrayTemplate.h"
-#include "vtkArrayDispatch.h"
-#include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
-#include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
-#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -28,15 +22,11 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkASMSimplify);
@@ -188,38 +178,10 @@ int vtkASMSimplify::RequestData(
     return 1;
   }
 
-  asmcore::SimplifyParameters parameters;
-  parameters.Mode = this->Mode == PAPER ? asmcore::SimplifyMode::Paper
-                                        : asmcore::SimplifyMode::FeaturePreserving;
-  parameters.NumberOfSamples = target;
-  parameters.CellSize = this->CellSize;
-  parameters.SamplesPerCell = this->SamplesPerCell;
-  parameters.Weight = this->WeightMode == SURFACE_VARIATION_WEIGHT
-    ? asmcore::WeightMode::SurfaceVariation
-    : asmcore::WeightMode::Uniform;
-  parameters.CurvatureWeight = this->CurvatureWeight;
-  // Options of the feature mode that the distributed budget rule and halo
-  // width depend on.
-  parameters.CoverEveryCell = this->CoverEveryCell;
-  parameters.BudgetExponent = this->BudgetExponent;
-  parameters.CrossCellIterations = this->CrossCellIterations;
-  // Hole filling ranks the samples and points of the whole cloud: distributed
-  // runs gather their rankings (GatherOverProcesses).
-  parameters.FillHoles = this->FillHoles;
-  parameters.FeatureSamplesPerCell = this->FeatureSamplesPerCell;
-  parameters.VariationBudget = this->VariationBudget;
-  parameters.VariationCap = this->VariationCap;
-  parameters.ReserveFreeSample = this->ReserveFreeSample;
-  // Local steps (a wider halo in distributed runs: HaloRingsFor); the mean
-  // of their weights is summed over the processes (SumOverProcesses).
-  parameters.FinalLloydIterations = this->FinalLloydIterations;
-  parameters.LloydVariationWeight = this->LloydVariationWeight;
-  // (Local: each sample moves within its own cluster.)
-  parameters.CoveringRounds = this->CoveringRounds;
-  parameters.SparseCellKeyPoints = this->SparseCellKeyPoints;
+  asmcore::SimplifyParameters parameters = asmvtk::CoreParameters(this, target);
   // The bound is the largest hole of the whole cloud: distributed runs take
   // it after the core's run, over all processes (BoundSnappedHolesAcross).
-  parameters.BoundSnappedHoles = distributed ? false : this->BoundSnappedHoles;
+  parameters.BoundSnappedHoles = parameters.BoundSnappedHoles && !distributed;
   vtkPointData* inPD = input->GetPointData();
   asmvtk::SimplifyShare share;
   if (distributed)
@@ -243,62 +205,18 @@ int vtkASMSimplify::RequestData(
     coordinateCopy.reset(); // the share holds this process's points now
     numberOfPoints = static_cast<vtkIdType>(ids.size());
     inPD = share.Cloud.PointData;
-    parameters.Grid = &share.Grid;
-    parameters.Cells = &share.Cloud.Cells;
-    if (parameters.Mode == asmcore::SimplifyMode::Paper)
-    {
-      parameters.CellBudget = [&share](std::uint64_t key) { return share.BudgetOf(key); };
-    }
-    else
-    {
-      // Halo cells are simplified too, with their true budgets, as context
-      // for the cross-cell steps; only the owned cells' samples are output.
-      parameters.CellBudget = [&share](std::uint64_t key) { return share.TrueBudgetOf(key); };
-      parameters.OutputCell = [&share](std::uint64_t key) { return share.Owns(key); };
-    }
-    parameters.CloudCentroid = share.Centroid;
+    asmvtk::RunOnShare(share, parameters);
   }
 
-  // The input normals are read where they are (float or double arrays);
-  // other layouts are copied as doubles.
+  // The input normals are read where they are (float or double arrays).
   std::unique_ptr<double[]> normalCopy;
-  asmcore::NormalField normals;
-  if (vtkDataArray* inNormals = inPD->GetNormals())
-  {
-    if (inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= numberOfPoints)
-    {
-      if (auto* floats = vtkArrayDownCast<vtkAOSDataArrayTemplate<float>>(inNormals))
-      {
-        normals = asmcore::NormalField(floats->GetPointer(0));
-      }
-      else if (auto* doubles = vtkArrayDownCast<vtkAOSDataArrayTemplate<double>>(inNormals))
-      {
-        normals = asmcore::NormalField(doubles->GetPointer(0));
-      }
-      else
-      {
-        normals = asmvtk::TuplesAsDoubles(inNormals, normalCopy);
-      }
-    }
-  }
+  const asmcore::NormalField normals = asmvtk::InputNormals(inPD, numberOfPoints, normalCopy);
 
-  parameters.Alpha = this->Alpha;
-  parameters.ErrorTolerance = this->ErrorTolerance;
   if (this->RelativeErrorTolerance && this->ErrorTolerance > 0.0)
   {
     parameters.ErrorTolerance *=
       distributed ? share.Diagonal : asmcore::ComputeBounds(xyz, ids).Diagonal();
   }
-  parameters.RandomSeed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->RandomSeed));
-  parameters.Snap = this->SnapToInputPoints;
-  parameters.ValidateKeyPoints = this->ValidateKeyPoints;
-  parameters.KeyPointRadius = this->KeyPointRadius;
-  parameters.KeyPointProminence = this->KeyPointProminence;
-  parameters.InPlaneKeyPoints = this->InPlaneKeyPoints;
-  parameters.ExtremeKeyPoints = this->ExtremeKeyPoints;
-  parameters.LloydIterations = this->LloydIterations;
-  parameters.InputPointSamples = this->InputPointSamples;
-  parameters.HoleFillFraction = this->HoleFillFraction;
   parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE
     ? std::numeric_limits<double>::epsilon()
     : std::numeric_limits<float>::epsilon();
@@ -318,14 +236,7 @@ int vtkASMSimplify::RequestData(
     {
       channel.Finish(); // (with the processes still running, if any)
     }
-    // Figures of the whole cloud: sums and maxima over the processes.
-    const Index keys = comm.Sum(result.NumberOfKeyPoints);
-    const double sum = comm.Sum(result.AKPE * static_cast<double>(result.NumberOfKeyPoints));
-    result.MKPE = comm.Max(result.MKPE);
-    result.AKPE = keys > 0 ? sum / static_cast<double>(keys) : 0.0;
-    result.NumberOfKeyPoints = keys;
-    result.CellSize = share.Grid.CellSize;
-    result.Aborted = comm.Max(result.Aborted ? 1.0 : 0.0) > 0.0;
+    asmvtk::CombineFigures(comm, share, result); // of the whole cloud
   }
   if (result.Aborted)
   {
@@ -367,64 +278,26 @@ int vtkASMSimplify::RequestData(
     xyz = asmcore::Coordinates();
   }
 
-  // Points and one vertex cell each.
-  vtkNew<vtkPoints> points;
+  // Points (one vertex cell each) and the generated arrays.
   const bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
     (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION &&
       pointsType == VTK_DOUBLE);
-  points->SetDataType(doublePrecision ? VTK_DOUBLE : VTK_FLOAT);
-  points->SetNumberOfPoints(count);
-  auto keyFlags = asmvtk::NewArray<vtkUnsignedCharArray>("KeyPoint", 1, count);
-  auto clusterSizes = asmvtk::NewArray<vtkIdTypeArray>("ClusterSize", 1, count);
-  auto variation = asmvtk::NewArray<vtkDoubleArray>("SurfaceVariation", 1, count);
-  auto originalIds = asmvtk::NewArray<vtkIdTypeArray>("vtkOriginalPointIds", 1, count);
   vtkAbstractArray* inputNamedNormals = inPD->GetAbstractArray("Normals");
   const bool nameTaken = // by an input array that is carried (see AggregatePointData)
     inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;
-  auto pcaNormals = asmvtk::NewArray<vtkFloatArray>(nameTaken ? "PCANormals" : "Normals", 3, count);
-  {
-    // Straight into the arrays, in parallel (each sample writes its slots).
-    void* xyzOut = points->GetData()->GetVoidPointer(0);
-    unsigned char* key = keyFlags->GetPointer(0);
-    vtkIdType* size = clusterSizes->GetPointer(0);
-    double* sv = variation->GetPointer(0);
-    vtkIdType* original = originalIds->GetPointer(0);
-    float* normal = pcaNormals->GetPointer(0);
-    asmvtk::For(threads, 0, count, [&](vtkIdType first, vtkIdType last) {
-      for (vtkIdType s = first; s < last; ++s)
-      {
-        const asmcore::Sample& sample = result.Samples[s];
-        for (int a = 0; a < 3; ++a)
-        {
-          if (doublePrecision)
-          {
-            static_cast<double*>(xyzOut)[3 * s + a] = sample.Position[a];
-          }
-          else
-          {
-            static_cast<float*>(xyzOut)[3 * s + a] = static_cast<float>(sample.Position[a]);
-          }
-          normal[3 * s + a] = static_cast<float>(sample.Normal[a]);
-        }
-        key[s] = sample.Key ? 1 : 0;
-        size[s] = sample.ClusterSize;
-        sv[s] = sample.SurfaceVariation;
-        original[s] = distributed ? share.Cloud.SourceId[sample.Representative] : sample.Representative;
-      }
-    });
-  }
-  output->SetPoints(points);
-  output->SetVerts(asmvtk::VertexCells(count, threads));
+  const asmvtk::SampleArrays generated = asmvtk::WriteSamples(result, doublePrecision,
+    distributed ? share.Cloud.SourceId.data() : nullptr, nameTaken ? "PCANormals" : "Normals",
+    threads, output);
   this->UpdateProgress(this->GenerateCurvature ? 0.72 : 0.95);
 
   // Point data: the input's arrays aggregated, then the generated ones.
   vtkPointData* outPD = output->GetPointData();
   asmvtk::AggregatePointData(inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this);
   asmcore::PointArray<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
-  outPD->AddArray(keyFlags);
-  outPD->AddArray(clusterSizes);
-  outPD->AddArray(variation);
-  outPD->AddArray(originalIds);
+  outPD->AddArray(generated.KeyPoint);
+  outPD->AddArray(generated.ClusterSize);
+  outPD->AddArray(generated.SurfaceVariation);
+  outPD->AddArray(generated.OriginalIds);
   if (merged)
   {
     // A composite input: the ids in the representative's own block (which
@@ -433,7 +306,7 @@ int vtkASMSimplify::RequestData(
     {
       for (vtkIdType s = 0; s < count; ++s)
       {
-        originalIds->SetValue(s, static_cast<vtkIdType>(leafIds->GetComponent(s, 0)));
+        generated.OriginalIds->SetValue(s, static_cast<vtkIdType>(leafIds->GetComponent(s, 0)));
       }
       outPD->RemoveArray(asmvtk::LeafPointIdsName);
     }
@@ -450,27 +323,18 @@ int vtkASMSimplify::RequestData(
   }
   if (nameTaken || outPD->GetNormals())
   {
-    outPD->AddArray(pcaNormals);
+    outPD->AddArray(generated.Normals);
   }
   else
   {
-    outPD->SetNormals(pcaNormals);
+    outPD->SetNormals(generated.Normals);
   }
   if (this->GenerateCurvature)
   {
     // At the output points, from the original cloud, signed by the output
     // normals (the PCA normals, oriented).
-    std::vector<double> positions(static_cast<std::size_t>(3 * count));
-    std::vector<double> orientation(static_cast<std::size_t>(3 * count));
-    for (vtkIdType s = 0; s < count; ++s)
-    {
-      std::copy(result.Samples[s].Position, result.Samples[s].Position + 3, &positions[3 * s]);
-      std::copy(result.Samples[s].Normal, result.Samples[s].Normal + 3, &orientation[3 * s]);
-    }
-    asmcore::UnwrittenArray<asmcore::Sample>().swap(result.Samples); // room for the tree
-    const asmcore::Neighbors tree(xyz, ids, asmvtk::SMPExecution(this, 0.72, 0.75, threads));
-    if (!asmvtk::AddCurvatureArrays(outPD, xyz, ids, tree, positions.data(), count,
-          orientation.data(), this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.75, 0.95, threads)))
+    if (!asmvtk::AddSampleCurvature(
+          outPD, result, xyz, ids, this->CurvatureNeighbors, this, threads))
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");
       output->Initialize();
