@@ -11,7 +11,6 @@
 #include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkPointData.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -131,29 +130,29 @@ struct MeanWorker
   // vectors, normals) with a compile-time count.
   template <typename T>
   void operator()(vtkAOSDataArrayTemplate<T>* in, vtkDataArray* outBase,
-    const SimplifyResult& result, bool renormalise, bool) const
+    const SimplifyResult& result, bool renormalise, bool parallel) const
   {
     auto* out = static_cast<vtkAOSDataArrayTemplate<T>*>(outBase);
     switch (in->GetNumberOfComponents())
     {
       case 1:
-        MeanAOS<1>(in->GetPointer(0), out->GetPointer(0), 1, result, renormalise);
+        MeanAOS<1>(in->GetPointer(0), out->GetPointer(0), 1, result, renormalise, parallel);
         break;
       case 3:
-        MeanAOS<3>(in->GetPointer(0), out->GetPointer(0), 3, result, renormalise);
+        MeanAOS<3>(in->GetPointer(0), out->GetPointer(0), 3, result, renormalise, parallel);
         break;
       default:
         MeanAOS<0>(in->GetPointer(0), out->GetPointer(0), in->GetNumberOfComponents(), result,
-          renormalise);
+          renormalise, parallel);
     }
   }
 
   template <int NC, typename T>
-  static void MeanAOS(
-    const T* src, T* dst, int dynamicComponents, const SimplifyResult& result, bool renormalise)
+  static void MeanAOS(const T* src, T* dst, int dynamicComponents, const SimplifyResult& result,
+    bool renormalise, bool parallel)
   {
     const int nc = NC > 0 ? NC : dynamicComponents;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(result.Samples.size()),
+    asmvtk::For(parallel, 0, static_cast<vtkIdType>(result.Samples.size()),
       [&](vtkIdType begin, vtkIdType end) {
         std::vector<double> sum(static_cast<std::size_t>(nc));
         std::vector<Index> n(static_cast<std::size_t>(nc));
@@ -179,14 +178,14 @@ struct MeanWorker
 };
 
 // Any AOS array: the representatives' tuples, copied as bytes.
-void CopyRepresentativesAOS(
-  vtkDataArray* in, vtkDataArray* out, const std::vector<vtkIdType>& representatives)
+void CopyRepresentativesAOS(vtkDataArray* in, vtkDataArray* out,
+  const std::vector<vtkIdType>& representatives, bool parallel)
 {
   const std::size_t bytes =
     static_cast<std::size_t>(in->GetDataTypeSize()) * static_cast<std::size_t>(in->GetNumberOfComponents());
   const auto* src = static_cast<const unsigned char*>(in->GetVoidPointer(0));
   auto* dst = static_cast<unsigned char*>(out->GetVoidPointer(0));
-  vtkSMPTools::For(0, static_cast<vtkIdType>(representatives.size()),
+  asmvtk::For(parallel, 0, static_cast<vtkIdType>(representatives.size()),
     [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType s = begin; s < end; ++s)
       {
@@ -206,7 +205,7 @@ bool IsAOS(vtkAbstractArray* a)
 namespace asmvtk
 {
 int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyResult& result,
-  bool snap, Index numberOfPoints, vtkObject* reporter)
+  bool snap, Index numberOfPoints, vtkObject* reporter, bool threads)
 {
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   std::vector<vtkIdType> representatives(static_cast<std::size_t>(count));
@@ -243,14 +242,14 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
       const bool renormalise = inData == inPD->GetNormals() && in->GetNumberOfComponents() == 3;
       MeanWorker worker;
       using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
-      if (!Reals::Execute(inData, worker, outData, result, renormalise, true))
+      if (!Reals::Execute(inData, worker, outData, result, renormalise, threads))
       {
         worker(inData, outData, result, renormalise, false); // generic API, one thread
       }
     }
     else if (IsAOS(in) && IsAOS(out))
     {
-      CopyRepresentativesAOS(inData, outData, representatives);
+      CopyRepresentativesAOS(inData, outData, representatives, threads);
     }
     else
     {

@@ -36,10 +36,12 @@ namespace asmvtk
 {
 /// Adds to `outPD` one array per array of `inPD` (see above), for the
 /// samples of `result`, taken from an input of `numberOfPoints` points.
-/// Warnings go to `reporter`. Returns the number of arrays not carried.
+/// Warnings go to `reporter`. The loops run on the calling thread alone
+/// when `threads` is false (asmvtk::For). Returns the number of arrays not
+/// carried.
 int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
   const asmcore::SimplifyResult& result, bool snap, asmcore::Index numberOfPoints,
-  vtkObject* reporter);
+  vtkObject* reporter, bool threads = true);
 } // namespace asmvtk
 
 #endif

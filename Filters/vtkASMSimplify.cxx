@@ -292,7 +292,8 @@ int vtkASMSimplify::RequestData(
 
   // Point data: the input's arrays aggregated, then the generated ones.
   vtkPointData* outPD = output->GetPointData();
-  asmvtk::AggregatePointData(inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this);
+  asmvtk::AggregatePointData(
+    inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this, threads);
   asmcore::PointArray<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
   outPD->AddArray(generated.KeyPoint);
   outPD->AddArray(generated.ClusterSize);

@@ -578,8 +578,9 @@ public:
    * STDThread backend starts its threads anew in every parallel loop (about
    * 0.1 ms each, a few hundred loops per run in FEATURE_PRESERVING mode),
    * which costs a small cloud more than a second thread gains: measured on 2
-   * cores, 2 threads were slower below about 50 k points. The output is the
-   * same either way.
+   * cores, 2 threads were slower below about 50 k points. When vtkSMPTools
+   * has one thread (Sequential backend, or vtkSMPTools::Initialize(1)) every
+   * input runs on the calling thread. The output is the same either way.
    */
   vtkSetClampMacro(MinimumPointsForThreads, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(MinimumPointsForThreads, vtkIdType);
