@@ -60,9 +60,20 @@ struct Execution
     }
     else
     {
-      body(begin, end);
+      // On the calling thread, in SequentialPieces pieces as vtkSMPTools
+      // splits a loop for one thread: loops keep scratch sized by their
+      // piece (a chunk's cluster sums, say), which one piece would make as
+      // large as the whole range (+17 bytes per point at 20 % in the default
+      // mode). The result does not depend on the pieces.
+      const Index n = end - begin;
+      const Index pieces = std::min<Index>(SequentialPieces, n);
+      for (Index k = 0; k < pieces; ++k)
+      {
+        body(begin + n * k / pieces, begin + n * (k + 1) / pieces);
+      }
     }
   }
+  static constexpr Index SequentialPieces = 4;
   bool Report(double fraction) const { return this->Progress ? this->Progress(fraction) : false; }
 };
 
