@@ -329,6 +329,38 @@ TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
     const asmcore::Execution execution = asmvtk::SMPExecution(filter, 0.0, 1.0, threads);
     EXPECT_EQ(static_cast<bool>(execution.For), threads);
   }
+  // With one vtkSMPTools thread the calling thread runs every loop itself
+  // (VTK 9.2's STDThread backend would start a thread for it and wait).
+  vtkSMPTools::Initialize(1);
+  {
+    std::vector<std::pair<vtkIdType, vtkIdType>> ranges;
+    bool otherThread = false;
+    asmvtk::For(true, 0, 100000, [&](vtkIdType b, vtkIdType e) {
+      ranges.emplace_back(b, e);
+      otherThread = otherThread || std::this_thread::get_id() != caller;
+    });
+    EXPECT_EQ(ranges, (std::vector<std::pair<vtkIdType, vtkIdType>>{ { 0, 100000 } }));
+    EXPECT_FALSE(otherThread);
+    EXPECT_FALSE(asmvtk::SMPExecution(filter, 0.0, 1.0, true).For);
+  }
   vtkSMPTools::Initialize(0);
   vtkSMPTools::SetBackend("Sequential");
+}
+
+// The core's loops without a parallel For run on the calling thread in a
+// few consecutive pieces (as vtkSMPTools cuts a loop for one thread), so
+// that scratch kept per piece stays a fraction of the range.
+TEST(FilterContracts, SequentialLoopsRunInPieces)
+{
+  const asmcore::Execution sequential;
+  auto piecesOf = [&](asmcore::Index begin, asmcore::Index end) {
+    std::vector<std::pair<asmcore::Index, asmcore::Index>> pieces;
+    sequential.Run(begin, end, [&](asmcore::Index b, asmcore::Index e) { pieces.emplace_back(b, e); });
+    return pieces;
+  };
+  using Pieces = std::vector<std::pair<asmcore::Index, asmcore::Index>>;
+  EXPECT_EQ(piecesOf(10, 110), (Pieces{ { 10, 35 }, { 35, 60 }, { 60, 85 }, { 85, 110 } }));
+  EXPECT_EQ(piecesOf(0, 3), (Pieces{ { 0, 1 }, { 1, 2 }, { 2, 3 } }));
+  EXPECT_EQ(piecesOf(7, 14), (Pieces{ { 7, 8 }, { 8, 10 }, { 10, 12 }, { 12, 14 } }));
+  EXPECT_TRUE(piecesOf(5, 5).empty());
 }
