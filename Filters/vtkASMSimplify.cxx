@@ -11,7 +11,6 @@
 #include "vtkASMSimplifySteps.h"
 
 #include "vtkCompositeDataSet.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"

@@ -63,8 +63,8 @@ struct Execution
       // On the calling thread, in SequentialPieces pieces as vtkSMPTools
       // splits a loop for one thread: loops keep scratch sized by their
       // piece (a chunk's cluster sums, say), which one piece would make as
-      // large as the whole range (+17 bytes per point at 20 % in the default
-      // mode). The result does not depend on the pieces.
+      // large as the whole range (heap peak 69.2 MB instead of 62.0 at 1 M
+      // points, 20 %, default mode). The result does not depend on the pieces.
       const Index n = end - begin;
       const Index pieces = std::min<Index>(SequentialPieces, n);
       for (Index k = 0; k < pieces; ++k)
