@@ -35,9 +35,10 @@
  *    key clusters draws them in the order of their extreme points'
  *    coordinates). So the serial path gives the same points as this one,
  *    even on gridded clouds whose points tie exactly everywhere (tests:
- *    the MPI lattice modes, DistributedFeatureHooks.*Lattice*); what
- *    remains order-dependent is the choice among exact duplicates (by id:
- *    the same position). (Key Point Error chooses among equidistant
+ *    the MPI lattice modes, DistributedFeatureHooks.*Lattice*). Among exact
+ *    duplicates (the same position), the point a sample stands for is the
+ *    one whose values come first (asmvtk::ChooseAmongDuplicates, after the
+ *    core, on either path). (Key Point Error chooses among equidistant
  *    nearest samples by position too.) A one-process run started by mpiexec
  *    takes this path too (LaunchedByMPIRunner: ParaView built with MPI has
  *    a one-process MPI controller even in the built-in session, so the

@@ -12,6 +12,7 @@
 #include "vtkObject.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -195,6 +196,67 @@ void CopyRepresentativesAOS(vtkDataArray* in, vtkDataArray* out,
     });
 }
 
+// -1, 0 or 1: values a against b, NaN after every number and equal to NaN.
+template <typename T>
+int CompareValues(T a, T b)
+{
+  const bool nanA = a != a, nanB = b != b; // NOLINT (NaN test for any T)
+  if (nanA || nanB)
+  {
+    return int(nanA) - int(nanB);
+  }
+  return a < b ? -1 : (b < a ? 1 : 0);
+}
+
+// -1, 0 or 1: the tuple of point a against that of point b in `array`,
+// component by component, by value (strings by their bytes; other arrays,
+// such as variant arrays, tie).
+int CompareTuples(vtkAbstractArray* array, vtkIdType a, vtkIdType b)
+{
+  const int nc = array->GetNumberOfComponents();
+  auto* data = vtkDataArray::SafeDownCast(array);
+  if (data && data->HasStandardMemoryLayout() && data->GetDataType() != VTK_BIT)
+  {
+    switch (data->GetDataType())
+    {
+      vtkTemplateMacro(
+        const auto* values = static_cast<const VTK_TT*>(data->GetVoidPointer(0));
+        for (int c = 0; c < nc; ++c) {
+          const int order = CompareValues(values[a * nc + c], values[b * nc + c]);
+          if (order != 0)
+          {
+            return order;
+          }
+        });
+    }
+    return 0;
+  }
+  if (data)
+  {
+    for (int c = 0; c < nc; ++c)
+    {
+      const int order = CompareValues(data->GetComponent(a, c), data->GetComponent(b, c));
+      if (order != 0)
+      {
+        return order;
+      }
+    }
+    return 0;
+  }
+  if (auto* strings = vtkStringArray::SafeDownCast(array))
+  {
+    for (int c = 0; c < nc; ++c)
+    {
+      const int order = strings->GetValue(a * nc + c).compare(strings->GetValue(b * nc + c));
+      if (order != 0)
+      {
+        return order < 0 ? -1 : 1;
+      }
+    }
+  }
+  return 0;
+}
+
 bool IsAOS(vtkAbstractArray* a)
 {
   return a->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
@@ -271,5 +333,71 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
     }
   }
   return dropped;
+}
+
+void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Coordinates xyz, SimplifyResult& result,
+  bool snap, bool threads)
+{
+  // The arrays that may differ between duplicates and are taken from the
+  // representative (with snapping: all of them).
+  std::vector<vtkAbstractArray*> arrays;
+  bool copied = snap;
+  for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = inPD->GetAbstractArray(i);
+    if (!array)
+    {
+      continue;
+    }
+    const int type = array->GetDataType();
+    copied = copied || !(vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE));
+    arrays.push_back(array);
+  }
+  if (!copied || !xyz || !result.SharedPositions)
+  {
+    return; // (no pass over the members: the usual case)
+  }
+  auto before = [&arrays](Index a, Index b) {
+    for (vtkAbstractArray* array : arrays)
+    {
+      if (const int order = CompareTuples(array, a, b))
+      {
+        return order < 0;
+      }
+    }
+    return a < b;
+  };
+  asmvtk::For(threads, 0, static_cast<vtkIdType>(result.Samples.size()),
+    [&](vtkIdType begin, vtkIdType end) {
+      constexpr Index Ahead = 16;
+      const Index total = static_cast<Index>(result.Members.size());
+      for (vtkIdType s = begin; s < end; ++s)
+      {
+        asmcore::Sample& sample = result.Samples[s];
+        if (sample.Representative < 0)
+        {
+          continue;
+        }
+        double r[3];
+        xyz.Get(sample.Representative, r);
+        const Index* members = result.Members.data() + sample.MemberBegin;
+        Index chosen = sample.Representative;
+        for (Index m = 0; m < sample.ClusterSize; ++m)
+        {
+          if (sample.MemberBegin + m + Ahead < total)
+          {
+            asmcore::Prefetch(xyz.Address(members[m + Ahead]));
+          }
+          double p[3];
+          xyz.Get(members[m], p);
+          if (p[0] == r[0] && p[1] == r[1] && p[2] == r[2] && members[m] != chosen &&
+            before(members[m], chosen))
+          {
+            chosen = members[m];
+          }
+        }
+        sample.Representative = chosen;
+      }
+    });
 }
 } // namespace asmvtk

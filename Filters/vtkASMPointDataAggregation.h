@@ -23,6 +23,9 @@
  * on the concrete array type (raw pointers for AOS arrays, no virtual call
  * per value). Arrays with fewer tuples than the input has points are not
  * carried (a warning names them).
+ *
+ * Which of exact duplicates a sample stands for (ChooseAmongDuplicates) does
+ * not depend on the points' ids either: the one whose values come first.
  */
 #ifndef vtkASMPointDataAggregation_h
 #define vtkASMPointDataAggregation_h
@@ -42,6 +45,20 @@ namespace asmvtk
 int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
   const asmcore::SimplifyResult& result, bool snap, asmcore::Index numberOfPoints,
   vtkObject* reporter, bool threads = true);
+
+/// Exact duplicates (points at the same position, such as the overlap of
+/// merged scans) may carry different values. A sample's representative
+/// input point becomes, among the members of its cluster at exactly the
+/// representative's position, the one whose point data comes first: array
+/// by array in the order of `inPD`, component by component, by value (NaN
+/// after every number; strings by their bytes), then the lower id. So the
+/// tuples copied from representatives (and, with `snap`, every array) do
+/// not depend on the input's order or on the number of MPI processes.
+/// Nothing to do, and no pass over the members, when the core found no two
+/// points at one position (SimplifyResult::SharedPositions) or no array is
+/// taken from the representatives (`snap` off, floating-point arrays only).
+void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Coordinates xyz,
+  asmcore::SimplifyResult& result, bool snap, bool threads = true);
 } // namespace asmvtk
 
 #endif

@@ -32,8 +32,9 @@
  * arrays averaged (NaN values ignored, the normals attribute renormalised);
  * integer, id, bit, string and other categorical arrays take the value of the
  * representative point (the member nearest the centroid, see
- * "vtkOriginalPointIds"), never an average; with SnapToInputPoints on, every
- * array takes the snapped input point's values;
+ * "vtkOriginalPointIds"; among exact duplicates, the one whose values come
+ * first), never an average; with SnapToInputPoints on, every array takes the
+ * snapped input point's values;
  * "Normals" (float; the cell's PCA normal, oriented to agree with the input normals
  * when there are some, else away from the cloud's centroid; named "PCANormals"
  * if the input already has an array called "Normals"); "KeyPoint" (1 for

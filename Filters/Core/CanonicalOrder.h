@@ -34,7 +34,9 @@ struct CanonicalOrderScratch
 /// serial path and distributed runs, whose points reach a process in
 /// another order, alike). A counting sort on the hash's leading bits, then
 /// the few points of a bucket by the whole key: linear in n.
-VTKASMFILTERS_EXPORT void CanonicalOrder(const double* xyz, const Index* ids, Index n,
+/// Returns whether two of the points share a position (exact duplicates,
+/// which this order puts next to each other).
+VTKASMFILTERS_EXPORT bool CanonicalOrder(const double* xyz, const Index* ids, Index n,
   std::vector<Index>& order, CanonicalOrderScratch& scratch);
 
 /// A cell's points gathered as doubles (floats widened exactly) in the
@@ -47,6 +49,8 @@ class VTKASMFILTERS_EXPORT CanonicalCell
 public:
   std::vector<double> Xyz;
   std::vector<Index> Ids;
+  /// Two of the gathered points share a position (CanonicalOrder).
+  bool SharedPositions = false;
 
   void Gather(Coordinates xyz, IdView points);
   void Gather(Coordinates xyz, const Index* points, Index n)

@@ -15,6 +15,7 @@
 #include "Neighbors.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -181,15 +182,18 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // the parallel copy takes the page faults.)
   std::unique_ptr<double[]> cellDoubles;
   std::unique_ptr<float[]> cellFloats;
+  std::atomic<bool> sharedPositions(false);
   const auto copyInCellOrder = [&](auto* to) {
     using T = std::remove_pointer_t<decltype(to)>;
     execution.Run(0, original.NumberOfCells(), [&](Index b, Index e) {
       CanonicalCell local;
+      bool shared = false;
       for (Index c = b; c < e; ++c)
       {
         const Index first = original.CellStart[c], n = original.CellSizeOf(c);
         Index* cellIds = original.Order.data() + first;
         local.Gather(xyz, cellIds, n);
+        shared = shared || local.SharedPositions;
         for (Index k = 0; k < n; ++k)
         {
           for (int a = 0; a < 3; ++a)
@@ -198,6 +202,10 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
           }
           cellIds[k] = local.Ids[k];
         }
+      }
+      if (shared)
+      {
+        sharedPositions = true;
       }
     });
   };
@@ -211,6 +219,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     cellDoubles.reset(new double[static_cast<std::size_t>(3 * total)]);
     copyInCellOrder(cellDoubles.get());
   }
+  result.SharedPositions = sharedPositions;
   // (released before the output)
   Coordinates P = xyz.Floats ? Coordinates(cellFloats.get()) : Coordinates(cellDoubles.get());
   // The same cells over the copy, in slot order, and each slot's point id.

@@ -8,6 +8,7 @@
 #include "Unclaimed.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 
@@ -240,11 +241,13 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
 
   // 4-6. Key points, error bound and sampling, cell by cell. Each cell writes
   // its own slots, so the result does not depend on the thread count.
+  std::atomic<bool> sharedPositions(false);
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
     CanonicalCell local;
     Groups groups;
     std::vector<char> grouped;
+    bool shared = false;
     for (Index c = b; c < e; ++c)
     {
       if (budget[c] == 0)
@@ -255,6 +258,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
       // The geometry reads the cell's points from a local copy (doubles, in
       // the cell's canonical order): local slot i is point points[i].
       local.Gather(xyz, result.Members.data() + grid.CellStart[c], n);
+      shared = shared || local.SharedPositions;
       const Index* points = local.Ids.data(); // (input point ids)
       const double* cellXyz = local.Xyz.data();
       const IdView slots = IdView::Identity(static_cast<std::size_t>(n));
@@ -338,6 +342,10 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
         }
       }
     }
+    if (shared)
+    {
+      sharedPositions = true;
+    }
   };
   // Batches between progress reports, cut by point count.
   const int batches = 20;
@@ -364,6 +372,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
     }
   }
 
+  result.SharedPositions = sharedPositions;
   AttachUnclaimedPoints(xyz, grid, sampleStart, result, haloSlot, execution);
 
   SummarizeKeyPoints(result);

@@ -216,6 +216,10 @@ struct VTKASMFILTERS_EXPORT SimplifyResult
   Index NumberOfKeyPoints = 0;
   double AKPE = 0.0; ///< mean KeyError over key samples
   double MKPE = 0.0; ///< max KeyError over key samples
+  /// Some input points share a position (exact duplicates): which of them a
+  /// sample's Representative names went by id (see
+  /// asmvtk::ChooseAmongDuplicates).
+  bool SharedPositions = false;
   bool Aborted = false;
 };
 

@@ -12,6 +12,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkDummyController.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkPointData.h"
 #include "vtkSOADataArrayTemplate.h"
 #include "vtkSMPTools.h"
@@ -164,6 +165,79 @@ TEST(DistributedFilter, CanonicalOrderMakesTheOutputIndependentOfInputOrder)
     const auto b = simplify(shuffled, mode);
     ASSERT_EQ(a.size(), 500u) << "mode " << mode;
     EXPECT_EQ(a, b) << "mode " << mode;
+  }
+}
+
+// Every point scanned twice with a different label (merged scans): the
+// label a sample takes is that of the duplicate whose values come first (5,
+// not 256: by value, not by the values' bytes or the points' ids), on the
+// serial and the distributed path, whichever copy comes first in the input,
+// with and without snapping.
+TEST(DistributedFilter, ExactDuplicatesGiveTheirFirstValuesWhateverTheOrder)
+{
+  const asmtest::Cloud unique = asmtest::Sphere(6000, 1.0, 11);
+  auto makeInput = [&unique](int firstLabel, int secondLabel) {
+    asmtest::Cloud twice = unique;
+    twice.insert(twice.end(), unique.begin(), unique.end());
+    vtkSmartPointer<vtkPolyData> pd = asmtest::ToPolyData(twice);
+    vtkNew<vtkIntArray> label;
+    label->SetName("Label");
+    const vtkIdType n = static_cast<vtkIdType>(unique.size() / 3);
+    label->SetNumberOfTuples(2 * n);
+    for (vtkIdType i = 0; i < 2 * n; ++i)
+    {
+      label->SetValue(i, i < n ? firstLabel : secondLabel);
+    }
+    pd->GetPointData()->AddArray(label);
+    return pd;
+  };
+  const vtkSmartPointer<vtkPolyData> inputs[2] = { makeInput(256, 5), makeInput(5, 256) };
+  using Row = std::array<double, 4>; // x y z label
+  auto rows = [](vtkPolyData* out) {
+    std::vector<Row> result;
+    vtkDataArray* label = out->GetPointData()->GetArray("Label");
+    EXPECT_NE(label, nullptr);
+    for (vtkIdType i = 0; label && i < out->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      out->GetPoint(i, p);
+      result.push_back({ p[0], p[1], p[2], label->GetTuple1(i) });
+    }
+    std::sort(result.begin(), result.end());
+    return result;
+  };
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    for (bool snap : { false, true })
+    {
+      std::vector<std::vector<Row>> runs;
+      for (bool distributed : { false, true })
+      {
+        for (vtkPolyData* input : inputs)
+        {
+          vtkSmartPointer<vtkASMSimplify> asm_ = distributed
+            ? DistributedFilter(mode)
+            : vtkSmartPointer<vtkASMSimplify>::New();
+          asm_->SetMode(mode);
+          asm_->SetSnapToInputPoints(snap);
+          asm_->SetTargetModeToNumberOfOutputPoints();
+          asm_->SetNumberOfOutputPoints(300);
+          asm_->SetInputData(input);
+          asm_->Update();
+          runs.push_back(rows(asm_->GetOutput()));
+        }
+      }
+      const std::string what = "mode " + std::to_string(mode) + (snap ? ", snapped" : "");
+      ASSERT_EQ(runs[0].size(), 300u) << what;
+      const auto fives = std::count_if(
+        runs[0].begin(), runs[0].end(), [](const Row& r) { return r[3] == 5.0; });
+      EXPECT_EQ(fives, 300) << what;
+      for (std::size_t r = 1; r < runs.size(); ++r)
+      {
+        EXPECT_EQ(runs[r], runs[0]) << what << ", run " << r << " (serial, serial swapped, "
+                                    << "distributed, distributed swapped)";
+      }
+    }
   }
 }
 
