@@ -335,27 +335,26 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
   return dropped;
 }
 
-void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Coordinates xyz, SimplifyResult& result,
-  bool snap, bool threads)
+void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap, bool threads)
 {
-  // The arrays that may differ between duplicates and are taken from the
-  // representative (with snapping: all of them).
+  const auto& duplicates = result.RepresentativeDuplicates;
+  // The arrays, all compared; something to do only when one of them is
+  // taken from the representatives (with snapping: all of them).
   std::vector<vtkAbstractArray*> arrays;
   bool copied = snap;
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
   {
-    vtkAbstractArray* array = inPD->GetAbstractArray(i);
-    if (!array)
+    if (vtkAbstractArray* array = inPD->GetAbstractArray(i))
     {
-      continue;
+      const int type = array->GetDataType();
+      copied = copied ||
+        !(vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE));
+      arrays.push_back(array);
     }
-    const int type = array->GetDataType();
-    copied = copied || !(vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE));
-    arrays.push_back(array);
   }
-  if (!copied || !xyz || !result.SharedPositions)
+  if (duplicates.empty() || !copied)
   {
-    return; // (no pass over the members: the usual case)
+    return;
   }
   auto before = [&arrays](Index a, Index b) {
     for (vtkAbstractArray* array : arrays)
@@ -369,34 +368,19 @@ void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Coordinates xyz, Simplif
   };
   asmvtk::For(threads, 0, static_cast<vtkIdType>(result.Samples.size()),
     [&](vtkIdType begin, vtkIdType end) {
-      constexpr Index Ahead = 16;
-      const Index total = static_cast<Index>(result.Members.size());
       for (vtkIdType s = begin; s < end; ++s)
       {
         asmcore::Sample& sample = result.Samples[s];
-        if (sample.Representative < 0)
+        const Index r = sample.Representative;
+        auto first = std::lower_bound(duplicates.begin(), duplicates.end(),
+          std::make_pair(r, std::numeric_limits<Index>::min()));
+        for (; first != duplicates.end() && first->first == r; ++first)
         {
-          continue;
-        }
-        double r[3];
-        xyz.Get(sample.Representative, r);
-        const Index* members = result.Members.data() + sample.MemberBegin;
-        Index chosen = sample.Representative;
-        for (Index m = 0; m < sample.ClusterSize; ++m)
-        {
-          if (sample.MemberBegin + m + Ahead < total)
+          if (before(first->second, sample.Representative))
           {
-            asmcore::Prefetch(xyz.Address(members[m + Ahead]));
-          }
-          double p[3];
-          xyz.Get(members[m], p);
-          if (p[0] == r[0] && p[1] == r[1] && p[2] == r[2] && members[m] != chosen &&
-            before(members[m], chosen))
-          {
-            chosen = members[m];
+            sample.Representative = first->second;
           }
         }
-        sample.Representative = chosen;
       }
     });
 }

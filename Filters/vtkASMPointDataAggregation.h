@@ -48,17 +48,17 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 
 /// Exact duplicates (points at the same position, such as the overlap of
 /// merged scans) may carry different values. A sample's representative
-/// input point becomes, among the members of its cluster at exactly the
-/// representative's position, the one whose point data comes first: array
-/// by array in the order of `inPD`, component by component, by value (NaN
-/// after every number; strings by their bytes), then the lower id. So the
-/// tuples copied from representatives (and, with `snap`, every array) do
-/// not depend on the input's order or on the number of MPI processes.
-/// Nothing to do, and no pass over the members, when the core found no two
-/// points at one position (SimplifyResult::SharedPositions) or no array is
-/// taken from the representatives (`snap` off, floating-point arrays only).
-void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Coordinates xyz,
-  asmcore::SimplifyResult& result, bool snap, bool threads = true);
+/// input point becomes, among the points at exactly its position
+/// (SimplifyResult::RepresentativeDuplicates), the one whose point data
+/// comes first: array by array in the order of `inPD`, component by
+/// component, by value (NaN after every number; strings by their bytes),
+/// then the lower id. So the tuples copied from representatives (and, with
+/// `snap`, every array) do not depend on the input's order or on the number
+/// of MPI processes. Nothing to do when no representative has a duplicate or
+/// no array is taken from the representatives (`snap` off, floating-point
+/// arrays only).
+void ChooseAmongDuplicates(
+  vtkPointData* inPD, asmcore::SimplifyResult& result, bool snap, bool threads = true);
 } // namespace asmvtk
 
 #endif

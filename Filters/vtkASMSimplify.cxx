@@ -266,7 +266,7 @@ int vtkASMSimplify::RequestData(
                     << result.CellSize << ".");
   }
   // Which of exact duplicates each sample stands for: by value, not by id.
-  asmvtk::ChooseAmongDuplicates(inPD, xyz, result, this->SnapToInputPoints, threads);
+  asmvtk::ChooseAmongDuplicates(inPD, result, this->SnapToInputPoints, threads);
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   // From here on the coordinates and ids serve the curvature estimates only:
   // released before the output is laid out when those are off.

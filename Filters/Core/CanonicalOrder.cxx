@@ -22,14 +22,14 @@ inline std::uint64_t OrderHash(const double* p)
 }
 } // namespace
 
-bool CanonicalOrder(const double* xyz, const Index* ids, Index n, std::vector<Index>& order,
+void CanonicalOrder(const double* xyz, const Index* ids, Index n, std::vector<Index>& order,
   CanonicalOrderScratch& scratch)
 {
   order.resize(static_cast<std::size_t>(n));
   if (n < 2)
   {
     std::fill(order.begin(), order.end(), Index(0));
-    return false;
+    return;
   }
   std::vector<std::uint64_t>& hash = scratch.Hash;
   std::vector<std::uint64_t>& sorted = scratch.Sorted;
@@ -85,20 +85,6 @@ bool CanonicalOrder(const double* xyz, const Index* ids, Index n, std::vector<In
     order[j] = moving;
     sorted[j] = key;
   }
-  // Points at one position share their hash: they are neighbours now.
-  for (Index i = 1; i < n; ++i)
-  {
-    if (sorted[i - 1] == sorted[i])
-    {
-      const double* a = xyz + 3 * order[i - 1];
-      const double* b = xyz + 3 * order[i];
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-      {
-        return true;
-      }
-    }
-  }
-  return false;
 }
 
 void CanonicalCell::Gather(Coordinates xyz, IdView points)
@@ -115,8 +101,7 @@ void CanonicalCell::Gather(Coordinates xyz, IdView points)
     this->GatheredIds[i] = points[i];
     xyz.Get(this->GatheredIds[i], this->Gathered.data() + 3 * i);
   }
-  this->SharedPositions =
-    CanonicalOrder(this->Gathered.data(), this->GatheredIds.data(), n, this->Order, this->Scratch);
+  CanonicalOrder(this->Gathered.data(), this->GatheredIds.data(), n, this->Order, this->Scratch);
   this->Xyz.resize(static_cast<std::size_t>(3 * n));
   this->Ids.resize(static_cast<std::size_t>(n));
   for (Index k = 0; k < n; ++k)

@@ -34,10 +34,31 @@ struct CanonicalOrderScratch
 /// serial path and distributed runs, whose points reach a process in
 /// another order, alike). A counting sort on the hash's leading bits, then
 /// the few points of a bucket by the whole key: linear in n.
-/// Returns whether two of the points share a position (exact duplicates,
-/// which this order puts next to each other).
-VTKASMFILTERS_EXPORT bool CanonicalOrder(const double* xyz, const Index* ids, Index n,
+VTKASMFILTERS_EXPORT void CanonicalOrder(const double* xyz, const Index* ids, Index n,
   std::vector<Index>& order, CanonicalOrderScratch& scratch);
+
+/// Calls visit(j) for every point j != r of [first, last) at exactly point
+/// r's position (-0 as +0), for points in canonical order (CanonicalOrder,
+/// cell after cell), where such duplicates are r's neighbours: only those
+/// are read. get(j, p) writes point j's coordinates into p[3].
+template <typename Get, typename Visit>
+void ForEachDuplicate(Index r, Index first, Index last, Get&& get, Visit&& visit)
+{
+  double at[3], p[3];
+  get(r, at);
+  auto same = [&](Index j) {
+    get(j, p);
+    return p[0] == at[0] && p[1] == at[1] && p[2] == at[2];
+  };
+  for (Index j = r - 1; j >= first && same(j); --j)
+  {
+    visit(j);
+  }
+  for (Index j = r + 1; j < last && same(j); ++j)
+  {
+    visit(j);
+  }
+}
 
 /// A cell's points gathered as doubles (floats widened exactly) in the
 /// cell's canonical order (CanonicalOrder), with their ids: local slot i is
@@ -49,8 +70,6 @@ class VTKASMFILTERS_EXPORT CanonicalCell
 public:
   std::vector<double> Xyz;
   std::vector<Index> Ids;
-  /// Two of the gathered points share a position (CanonicalOrder).
-  bool SharedPositions = false;
 
   void Gather(Coordinates xyz, IdView points);
   void Gather(Coordinates xyz, const Index* points, Index n)

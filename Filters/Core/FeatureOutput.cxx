@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "FeatureOutput.h"
 
+#include "CanonicalOrder.h"
 #include "SnappedHoles.h"
 
 #include <algorithm>
@@ -13,10 +14,13 @@ namespace feature
 {
 void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf,
   const std::vector<Index>& memberStart, const SimplifyParameters& parameters, SampleSet& samples,
-  std::vector<SampleInfo>& info, PointArray<Index>& members, const Execution& execution)
+  std::vector<SampleInfo>& info, PointArray<Index>& members,
+  std::vector<std::pair<Index, Index>>& duplicates, const Execution& execution)
 {
   const Index count = samples.Size();
   const bool inputPointSamples = parameters.Snap || parameters.InputPointSamples;
+  const auto getP = [&P](Index j, double* x) { P.Get(j, x); };
+  std::vector<char> twinned(static_cast<std::size_t>(count), 0); // (see the end)
   execution.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
@@ -70,6 +74,8 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
       {
         info[s].Point = nearest;
       }
+      ForEachDuplicate(info[s].Point, 0, grid.NumberOfPoints(), getP,
+        [&](Index) { twinned[static_cast<std::size_t>(s)] = 1; });
       // A free sample that is not snapped is its final cluster's centroid.
       if (snap)
       {
@@ -102,10 +108,20 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
       members[j] = idOf[members[j]];
     }
   });
-  for (SampleInfo& sample : info)
+  // The representatives' exact duplicates: their neighbours in slot order
+  // (each cell's points are in canonical order), found above.
+  duplicates.clear();
+  for (std::size_t s = 0; s < info.size(); ++s)
   {
-    sample.Point = idOf[sample.Point];
+    const Index point = info[s].Point;
+    if (s < twinned.size() && twinned[s])
+    {
+      ForEachDuplicate(point, 0, grid.NumberOfPoints(), getP,
+        [&](Index j) { duplicates.emplace_back(idOf[point], idOf[j]); });
+    }
+    info[s].Point = idOf[point];
   }
+  std::sort(duplicates.begin(), duplicates.end());
 }
 
 void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,

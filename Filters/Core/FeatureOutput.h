@@ -45,11 +45,13 @@ struct VTKASMFILTERS_EXPORT CellSurface
 /// samples stay on their extreme point); with BoundSnappedHoles, the
 /// snapped samples whose cluster reaches past the largest hole minimax
 /// centres would leave move towards that centre. Then the members and each
-/// sample's representative (info[s].Point) become input point ids (idOf).
+/// sample's representative (info[s].Point) become input point ids (idOf),
+/// and `duplicates` lists the representatives' exact duplicates
+/// (SimplifyResult::RepresentativeDuplicates).
 VTKASMFILTERS_EXPORT void PlaceOutputSamples(Coordinates P, const CellGrid& grid,
   const SlotIds& idOf, const std::vector<Index>& memberStart, const SimplifyParameters& parameters,
   SampleSet& samples, std::vector<SampleInfo>& info, PointArray<Index>& members,
-  const Execution& execution);
+  std::vector<std::pair<Index, Index>>& duplicates, const Execution& execution);
 
 /// Output, step 2 (result.Members holds input point ids): result.Samples from the samples' positions, members and
 /// representatives, each with its owner cell's surface: the normal oriented

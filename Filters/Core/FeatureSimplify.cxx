@@ -15,7 +15,6 @@
 #include "Neighbors.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -182,18 +181,15 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // the parallel copy takes the page faults.)
   std::unique_ptr<double[]> cellDoubles;
   std::unique_ptr<float[]> cellFloats;
-  std::atomic<bool> sharedPositions(false);
   const auto copyInCellOrder = [&](auto* to) {
     using T = std::remove_pointer_t<decltype(to)>;
     execution.Run(0, original.NumberOfCells(), [&](Index b, Index e) {
       CanonicalCell local;
-      bool shared = false;
       for (Index c = b; c < e; ++c)
       {
         const Index first = original.CellStart[c], n = original.CellSizeOf(c);
         Index* cellIds = original.Order.data() + first;
         local.Gather(xyz, cellIds, n);
-        shared = shared || local.SharedPositions;
         for (Index k = 0; k < n; ++k)
         {
           for (int a = 0; a < 3; ++a)
@@ -202,10 +198,6 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
           }
           cellIds[k] = local.Ids[k];
         }
-      }
-      if (shared)
-      {
-        sharedPositions = true;
       }
     });
   };
@@ -219,7 +211,6 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     cellDoubles.reset(new double[static_cast<std::size_t>(3 * total)]);
     copyInCellOrder(cellDoubles.get());
   }
-  result.SharedPositions = sharedPositions;
   // (released before the output)
   Coordinates P = xyz.Floats ? Coordinates(cellFloats.get()) : Coordinates(cellDoubles.get());
   // The same cells over the copy, in slot order, and each slot's point id.
@@ -397,7 +388,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // Output, step 1, with the copy: the samples' final positions and
   // representatives; then the members and representatives become input
   // point ids, and the copy is released.
-  PlaceOutputSamples(P, grid, idOf, memberStart, parameters, samples, info, result.Members, execution);
+  PlaceOutputSamples(P, grid, idOf, memberStart, parameters, samples, info, result.Members,
+    result.RepresentativeDuplicates, execution);
   cellFloats.reset();
   cellDoubles.reset();
   slotIds.reset();

@@ -8,8 +8,8 @@
 #include "Unclaimed.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 namespace asmcore
@@ -241,13 +241,13 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
 
   // 4-6. Key points, error bound and sampling, cell by cell. Each cell writes
   // its own slots, so the result does not depend on the thread count.
-  std::atomic<bool> sharedPositions(false);
+  std::mutex duplicatesMutex; // (the pieces' duplicates, sorted at the end)
   auto processCells = [&](Index b, Index e) {
     LocalPoints q;
     CanonicalCell local;
     Groups groups;
     std::vector<char> grouped;
-    bool shared = false;
+    std::vector<std::pair<Index, Index>> duplicates;
     for (Index c = b; c < e; ++c)
     {
       if (budget[c] == 0)
@@ -258,7 +258,6 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
       // The geometry reads the cell's points from a local copy (doubles, in
       // the cell's canonical order): local slot i is point points[i].
       local.Gather(xyz, result.Members.data() + grid.CellStart[c], n);
-      shared = shared || local.SharedPositions;
       const Index* points = local.Ids.data(); // (input point ids)
       const double* cellXyz = local.Xyz.data();
       const IdView slots = IdView::Identity(static_cast<std::size_t>(n));
@@ -310,6 +309,9 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
           s.Normal[a] = normal[a];
         }
         s.Representative = points[nearest];
+        ForEachDuplicate(
+          nearest, 0, n, [&](Index j, double* p) { CopyPoint(cellXyz + 3 * j, p); },
+          [&](Index j) { duplicates.emplace_back(points[nearest], points[j]); });
         s.MemberBegin = memberCursor;
         s.ClusterSize = static_cast<Index>(last - first);
         s.CoreSize = s.ClusterSize;
@@ -342,9 +344,11 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
         }
       }
     }
-    if (shared)
+    if (!duplicates.empty())
     {
-      sharedPositions = true;
+      const std::lock_guard<std::mutex> lock(duplicatesMutex);
+      result.RepresentativeDuplicates.insert(
+        result.RepresentativeDuplicates.end(), duplicates.begin(), duplicates.end());
     }
   };
   // Batches between progress reports, cut by point count.
@@ -372,7 +376,7 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
     }
   }
 
-  result.SharedPositions = sharedPositions;
+  std::sort(result.RepresentativeDuplicates.begin(), result.RepresentativeDuplicates.end());
   AttachUnclaimedPoints(xyz, grid, sampleStart, result, haloSlot, execution);
 
   SummarizeKeyPoints(result);

@@ -216,10 +216,12 @@ struct VTKASMFILTERS_EXPORT SimplifyResult
   Index NumberOfKeyPoints = 0;
   double AKPE = 0.0; ///< mean KeyError over key samples
   double MKPE = 0.0; ///< max KeyError over key samples
-  /// Some input points share a position (exact duplicates): which of them a
-  /// sample's Representative names went by id (see
-  /// asmvtk::ChooseAmongDuplicates).
-  bool SharedPositions = false;
+  /// Exact duplicates of the representatives: (Representative of a sample,
+  /// another input point at exactly its position), sorted; empty when no
+  /// representative has one. The core chooses among duplicates by id;
+  /// these let a caller choose by the points' values instead
+  /// (asmvtk::ChooseAmongDuplicates).
+  std::vector<std::pair<Index, Index>> RepresentativeDuplicates;
   bool Aborted = false;
 };
 

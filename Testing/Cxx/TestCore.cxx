@@ -210,44 +210,34 @@ TEST(Grid, CanonicalOrderDoesNotDependOnTheOrderOfThePoints)
   }
 }
 
-// CanonicalOrder tells whether two points share a position (-0 and +0
-// alike), and a run of either mode passes it on (SimplifyResult::
-// SharedPositions: what lets the VTK layer skip its search for duplicates).
-TEST(Grid, SharedPositionsAreFound)
+// Both modes list the representatives' exact duplicates, and nothing else: what lets the VTK layer choose among them by value.
+TEST(Simplify, RepresentativeDuplicatesAreListed)
 {
-  auto shared = [](const Cloud& c) {
-    std::vector<Index> ids(c.size() / 3);
-    std::iota(ids.begin(), ids.end(), Index(0));
-    std::vector<Index> order;
-    asmcore::CanonicalOrderScratch scratch;
-    return asmcore::CanonicalOrder(c.data(), ids.data(), static_cast<Index>(ids.size()), order, scratch);
-  };
-  Cloud lattice;
-  for (int i = 0; i < 12; ++i)
-  {
-    for (int j = 0; j < 12; ++j)
-    {
-      asmtest::Add(lattice, 0.1 * i, 0.1 * j, 0.0);
-    }
-  }
-  EXPECT_FALSE(shared(lattice)) << "ties in every coordinate, no two points at one position";
-  Cloud signedZero = lattice;
-  asmtest::Add(signedZero, -0.0, 0.5, 0.0);
-  EXPECT_TRUE(shared(signedZero));
-  Cloud twice = lattice;
-  asmtest::Add(twice, 0.1 * 7, 0.1 * 2, 0.0);
-  EXPECT_TRUE(shared(twice));
-
   const Cloud sphere = asmtest::Sphere(8000, 1.0, 3);
-  Cloud duplicated = sphere;
-  duplicated.insert(duplicated.end(), sphere.begin(), sphere.begin() + 3); // point 0 again
+  const Index n = static_cast<Index>(sphere.size() / 3);
+  Cloud twice = sphere;
+  twice.insert(twice.end(), sphere.begin(), sphere.end()); // point i + n at point i
+  // (Two more points, at x = 0 and x = -0: one position.)
+  asmtest::Add(twice, 0.0, 0.6, 0.8);
+  asmtest::Add(twice, -0.0, 0.6, 0.8);
   for (auto mode : { asmcore::SimplifyMode::Paper, asmcore::SimplifyMode::FeaturePreserving })
   {
     asmcore::SimplifyParameters p;
     p.NumberOfSamples = 400;
     p.Mode = mode;
-    EXPECT_FALSE(asmcore::Simplify(sphere.data(), AllIds(sphere), nullptr, p).SharedPositions);
-    EXPECT_TRUE(asmcore::Simplify(duplicated.data(), AllIds(duplicated), nullptr, p).SharedPositions);
+    EXPECT_TRUE(asmcore::Simplify(sphere.data(), AllIds(sphere), nullptr, p)
+                  .RepresentativeDuplicates.empty());
+    const auto r = asmcore::Simplify(twice.data(), AllIds(twice), nullptr, p);
+    ASSERT_EQ(r.Samples.size(), 400u);
+    std::vector<std::pair<Index, Index>> expected;
+    for (const auto& s : r.Samples)
+    {
+      const Index a = s.Representative;
+      const Index twin = a >= 2 * n ? (a == 2 * n ? a + 1 : a - 1) : (a < n ? a + n : a - n);
+      expected.emplace_back(a, twin);
+    }
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(r.RepresentativeDuplicates, expected) << "mode " << int(mode);
   }
 }
 

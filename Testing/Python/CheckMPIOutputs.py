@@ -8,8 +8,8 @@ runs). The one-process runs of the serial path (AlwaysDistribute off) must
 agree with the distributed runs too: a cell's result does not depend on the
 order of its points.
 
-The lattice modes (gridded data, exact ties everywhere) compare the same
-way: Key Point Error's planes are fitted to the 8 nearest simplified points,
+The lattice modes (gridded data, exact ties everywhere, every point twice
+with two labels) compare the same way, their labels exactly too: Key Point Error's planes are fitted to the 8 nearest simplified points,
 chosen among equidistant ones by position, not by the order the simplified
 points were gathered in.
 
@@ -40,10 +40,13 @@ for mode, group in sorted(modes.items()):
     assert len(base["table"]) == ns, "%s: %d points" % (base_file, len(base["table"]))
     xyz = base["table"][:, :3]
     diagonal = np.linalg.norm(xyz.max(0) - xyz.min(0))
+    # (The lattice runs add a "Label" column: the representatives' labels.)
+    names = columns + ["Label"] * (base["table"].shape[1] - len(columns))
     for f, run in group[1:]:
         table = run["table"]
         assert len(table) == ns, "%s: %d points, not %d" % (f, len(table), ns)
-        for c, name in enumerate(columns):
+        assert table.shape[1] == len(names), "%s: %d columns, not %d" % (f, table.shape[1], len(names))
+        for c, name in enumerate(names):
             a, b = base["table"][:, c], table[:, c]
             if name == "ClusterSize":
                 assert a.sum() == b.sum(), "%s: ClusterSize total %d != %d" % (f, b.sum(), a.sum())

@@ -19,7 +19,9 @@ all processes, and BoundSnappedHoles, which it takes over all processes).
 "lattice-paper" and "lattice-feature": the same two modes (N_s = 2000) on
 gridded data instead of the bunny, whose points tie exactly everywhere: a
 150 x 150 lattice over [-3, 3]^2 with a stepped height z = 0.1 floor(x + y),
-every point twice; each cell is processed in its canonical order
+every point twice, the copies with different labels (an integer array,
+"Label", taken from each sample's representative: 5, the copy whose values
+come first); each cell is processed in its canonical order
 (asmcore::CanonicalOrder), so the serial path, which reads the points in
 input order, and the distributed runs, which receive them in another, agree.
 Optional third argument "serial": pvbatch started without mpiexec (one
@@ -70,6 +72,15 @@ piece.SetPoints(points)
 value = numpy_to_vtk(np.ascontiguousarray(xyz[mine, 0] * 10.0 + xyz[mine, 1]), deep=1)
 value.SetName("Value")
 piece.GetPointData().AddArray(value)
+if LATTICE:
+    # The lattice's two copies of a point carry different labels (an integer
+    # array: a sample takes its representative's): the copy whose label
+    # comes first, 5 (by value, not by id or by the values' bytes), in every
+    # run, whatever the order the copies come in.
+    labels = np.where(np.arange(len(xyz)) < len(grid), 256, 5).astype(np.int32)
+    label = numpy_to_vtk(np.ascontiguousarray(labels[mine]), deep=1)
+    label.SetName("Label")
+    piece.GetPointData().AddArray(label)
 
 asm = vtkASMSimplify()
 asm.SetInputData(piece)
@@ -125,6 +136,8 @@ columns = [vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64).reshape(n,
 for name in ("Value", "MeanCurvature", "KeyPoint", "ClusterSize"):
     columns.append(vtk_to_numpy(pd.GetArray(name)).astype(np.float64) if n else np.zeros(0))
 columns.append(vtk_to_numpy(mpd.GetArray("Error")).astype(np.float64) if n else np.zeros(0))
+if LATTICE:
+    columns.append(vtk_to_numpy(pd.GetArray("Label")).astype(np.float64) if n else np.zeros(0))
 table = gather(columns)
 fd = out.GetFieldData()
 mfd = measured.GetFieldData()
@@ -147,6 +160,8 @@ if rank == 0:
     assert figures["KPE.NumberOfSimplifiedPoints"] == NS, figures
     assert figures["KPE.NumberOfOriginalPoints"] == len(xyz), figures
     assert 0 < figures["KPE.AKPE"] <= figures["KPE.MKPE"], figures
+    if LATTICE:
+        assert np.all(table[:, 8] == 5), np.unique(table[:, 8], return_counts=True)
     if MODE == "feature":
         # InputPointSamples: every output point is an input point, exactly,
         # except the few that BoundSnappedHoles moved towards their cluster's
