@@ -64,13 +64,15 @@ set(ASM_FILTERS_PRIVATE
 # Filters/): vtkASMDistributed{Feature,Communication,Redistribute}.cxx implement
 # parts of vtkASMDistributed.h, Core/NeighborsBuild.cxx the build of
 # Core/Neighbors.h's tree, Core/HoleFillingGreedy.cxx a step of
-# Core/HoleFillingSteps.h.
+# Core/HoleFillingSteps.h, Core/PlaneLinkage.cxx the single linkage of
+# Core/PlaneClusters.h.
 set(ASM_FILTERS_EXTRA_SOURCES
   vtkASMDistributedFeature.cxx
   vtkASMDistributedCommunication.cxx
   vtkASMDistributedRedistribute.cxx
   Core/NeighborsBuild.cxx
   Core/HoleFillingGreedy.cxx
+  Core/PlaneLinkage.cxx
 )
 # Header-only private headers, if any (paths relative to Filters/).
 set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
