@@ -42,7 +42,9 @@ double Median(std::vector<double> values);
 std::vector<std::string> SplitList(const std::string& text);
 
 /// Peak resident memory (bytes) added while `run` executes, measured in a
-/// forked child (the parent's memory is untouched): the child makes malloc
+/// forked child (the parent's memory is untouched), on a thread of the
+/// child's own (a new malloc arena, not the heap inherited from the parent
+/// with its free space): it makes malloc
 /// return large blocks to the system at once, runs once to warm up, resets
 /// its high-water mark (/proc/self/clear_refs "5"), runs again and reports
 /// VmHWM - VmRSS(before) - run()'s own return value (bytes to exclude, e.g.
