@@ -264,6 +264,83 @@ TEST(NoLostData, FloatMeansIgnoreNaNValues)
   }
 }
 
+// Exact duplicates with different values: a sample takes the values of the
+// copy whose values come first, array by array (the first array ties here),
+// component by component, by value: strings in byte order, NaN after every
+// number. Snapped, so that every array, the floating ones too, is taken from
+// the representative; each case with the copies in both input orders.
+TEST(NoLostData, ExactDuplicatesGiveTheValuesThatComeFirst)
+{
+  const Cloud unique = asmtest::Sphere(3000, 1.0, 13);
+  const vtkIdType n = static_cast<vtkIdType>(unique.size() / 3);
+  Cloud twice = unique;
+  twice.insert(twice.end(), unique.begin(), unique.end());
+  // Per copy: a tie (the same in both), a string, a pair of doubles whose
+  // first component ties and whose second is NaN in one copy.
+  struct Copy
+  {
+    const char* Name;
+    double Second;
+  };
+  auto makeInput = [&](const Copy& a, const Copy& b) {
+    vtkSmartPointer<vtkPolyData> pd = ToPolyData(twice);
+    vtkNew<vtkIntArray> tie;
+    tie->SetName("Tie");
+    vtkNew<vtkStringArray> names;
+    names->SetName("Name");
+    vtkNew<vtkDoubleArray> pairs;
+    pairs->SetName("Pair");
+    pairs->SetNumberOfComponents(2);
+    for (vtkIdType i = 0; i < 2 * n; ++i)
+    {
+      const Copy& c = i < n ? a : b;
+      tie->InsertNextValue(7);
+      names->InsertNextValue(c.Name);
+      pairs->InsertNextTuple2(0.5, c.Second);
+    }
+    pd->GetPointData()->AddArray(tie);
+    pd->GetPointData()->AddArray(names);
+    pd->GetPointData()->AddArray(pairs);
+    return pd;
+  };
+  // The copy expected second, then the one expected: the strings decide
+  // ("a" before "b"), or, when they tie, the NaN comes after 1.0.
+  const Copy cases[2][2] = { { { "b", 1.0 }, { "a", std::nan("") } },
+    { { "a", std::nan("") }, { "a", 1.0 } } };
+  for (const auto& pair : cases)
+  {
+    const Copy& expected = pair[1];
+    for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+    {
+      for (bool swapped : { false, true })
+      {
+        FilterRun run;
+        run.Count(200);
+        run.Filter->SetMode(mode);
+        run.Filter->SetSnapToInputPoints(true);
+        vtkPolyData* out =
+          run.Execute(swapped ? makeInput(pair[1], pair[0]) : makeInput(pair[0], pair[1]));
+        ASSERT_EQ(out->GetNumberOfPoints(), 200);
+        auto* names = vtkStringArray::SafeDownCast(out->GetPointData()->GetAbstractArray("Name"));
+        vtkDataArray* pairs = out->GetPointData()->GetArray("Pair");
+        ASSERT_NE(names, nullptr);
+        ASSERT_NE(pairs, nullptr);
+        int same = 0;
+        for (vtkIdType i = 0; i < 200; ++i)
+        {
+          const double second = pairs->GetComponent(i, 1);
+          same += names->GetValue(i) == expected.Name &&
+              (std::isnan(second) ? std::isnan(expected.Second) : second == expected.Second)
+            ? 1
+            : 0;
+        }
+        EXPECT_EQ(same, 200) << "expected " << expected.Name << ", " << expected.Second
+                             << "; mode " << mode << (swapped ? ", swapped" : "");
+      }
+    }
+  }
+}
+
 TEST(NoLostData, FieldDataIsCarriedAndOurFiguresAdded)
 {
   auto input = ToPolyData(asmtest::Sphere(2000, 1.0, 1));
