@@ -196,6 +196,14 @@ void CopyRepresentativesAOS(vtkDataArray* in, vtkDataArray* out,
     });
 }
 
+// Whether an array is averaged over the clusters (float and double data
+// arrays) rather than taken from the representatives; with snapping, none.
+bool Averaged(vtkAbstractArray* array, bool snap)
+{
+  const int type = array->GetDataType();
+  return !snap && vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE);
+}
+
 // -1, 0 or 1: values a against b, NaN after every number and equal to NaN.
 template <typename T>
 int CompareValues(T a, T b)
@@ -297,9 +305,7 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
     out->SetNumberOfTuples(count);
     auto* inData = vtkDataArray::SafeDownCast(in);
     auto* outData = vtkDataArray::SafeDownCast(out);
-    const int type = in->GetDataType();
-    const bool floating = inData && (type == VTK_FLOAT || type == VTK_DOUBLE);
-    if (floating && !snap)
+    if (Averaged(in, snap))
     {
       const bool renormalise = inData == inPD->GetNormals() && in->GetNumberOfComponents() == 3;
       MeanWorker worker;
@@ -341,14 +347,12 @@ void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap
   // The arrays, all compared; something to do only when one of them is
   // taken from the representatives (with snapping: all of them).
   std::vector<vtkAbstractArray*> arrays;
-  bool copied = snap;
+  bool copied = false;
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
   {
     if (vtkAbstractArray* array = inPD->GetAbstractArray(i))
     {
-      const int type = array->GetDataType();
-      copied = copied ||
-        !(vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE));
+      copied = copied || !Averaged(array, snap);
       arrays.push_back(array);
     }
   }
