@@ -57,6 +57,22 @@ vtkSmartPointer<vtkPolyData> SimplifyTo(vtkPolyData* input, int mode, vtkIdType 
   return asm_->GetOutput();
 }
 
+// The output's points with the first component of array `name`, as
+// (x, y, z, value) rows, sorted (none when the array is missing).
+std::vector<std::array<double, 4>> SortedRows(vtkPolyData* out, const char* name)
+{
+  std::vector<std::array<double, 4>> result;
+  vtkDataArray* value = out->GetPointData()->GetArray(name);
+  for (vtkIdType i = 0; value && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    result.push_back({ p[0], p[1], p[2], value->GetTuple1(i) });
+  }
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
 Output Simplify(vtkPolyData* input, int mode)
 {
   vtkSmartPointer<vtkPolyData> out = SimplifyTo(input, mode, 400);
@@ -144,17 +160,7 @@ TEST(DistributedFilter, CanonicalOrderMakesTheOutputIndependentOfInputOrder)
     return pd;
   };
   auto simplify = [](vtkPolyData* input, int mode) {
-    vtkSmartPointer<vtkPolyData> out = SimplifyTo(input, mode, 500);
-    std::vector<std::array<double, 4>> result;
-    vtkDataArray* value = out->GetPointData()->GetArray("Value");
-    for (vtkIdType i = 0; value && i < out->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      out->GetPoint(i, p);
-      result.push_back({ p[0], p[1], p[2], value->GetTuple1(i) });
-    }
-    std::sort(result.begin(), result.end());
-    return result;
+    return SortedRows(SimplifyTo(input, mode, 500), "Value");
   };
   vtkSmartPointer<vtkPolyData> forward = makeInput(rows);
   std::shuffle(rows.begin(), rows.end(), rng);
@@ -194,17 +200,8 @@ TEST(DistributedFilter, ExactDuplicatesGiveTheirFirstValuesWhateverTheOrder)
   const vtkSmartPointer<vtkPolyData> inputs[2] = { makeInput(256, 5), makeInput(5, 256) };
   using Row = std::array<double, 4>; // x y z label
   auto rows = [](vtkPolyData* out) {
-    std::vector<Row> result;
-    vtkDataArray* label = out->GetPointData()->GetArray("Label");
-    EXPECT_NE(label, nullptr);
-    for (vtkIdType i = 0; label && i < out->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      out->GetPoint(i, p);
-      result.push_back({ p[0], p[1], p[2], label->GetTuple1(i) });
-    }
-    std::sort(result.begin(), result.end());
-    return result;
+    EXPECT_NE(out->GetPointData()->GetArray("Label"), nullptr);
+    return SortedRows(out, "Label");
   };
   for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
   {
