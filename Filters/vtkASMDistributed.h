@@ -114,8 +114,13 @@
  *    global nearest; an empty-cluster repair that chains over more than two
  *    rings could differ from a one-process run (not seen in the tests).
  *
- * Only numeric point-data arrays travel (string arrays are dropped with a
- * warning); points flagged as duplicate ghosts (vtkGhostType) are skipped.
+ * Numeric point-data arrays travel with the points, in their records;
+ * string, variant and bit arrays are read after the run at the samples'
+ * representatives (FetchRepresentativeValues: the value a serial run gives
+ * them). An array that some process with points lacks (or has with another
+ * type, fewer components or fewer tuples than points) is dropped with a
+ * warning, as are unnamed arrays. Points flagged as duplicate ghosts
+ * (vtkGhostType) are skipped.
  * The core runs unchanged on each process's points through hooks in
  * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
  * halo cells are passed to it too (Paper: budget -1, neighbours only;
@@ -220,6 +225,16 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz,
 asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
   const double* xyz, asmcore::IdView ids, const asmcore::Execution& execution = {});
 
+/// A point-data array that does not travel with the points (a string,
+/// variant or bit array): read at the samples' representatives after the
+/// run (FetchRepresentativeValues).
+struct FetchedArray
+{
+  std::string Name;
+  int Type;
+  int Components;
+};
+
 /// The points a process holds after redistribution, in canonical order.
 struct LocalCloud
 {
@@ -237,12 +252,16 @@ struct LocalCloud
   /// The points, 0 .. Size() - 1.
   asmcore::IdView Ids() const { return asmcore::IdView::Identity(this->Xyz.size() / 3); }
   vtkSmartPointer<vtkPointData> PointData;  ///< the transferred arrays
+  std::vector<FetchedArray> Fetched;        ///< arrays read after the run
   std::vector<std::string> Dropped;         ///< arrays not transferred (and why)
 };
 
 /// Collective: send every point (xyz[3*id], id in ids, with the numeric
 /// point-data arrays of `input`) to the owner of its cell and, as a halo
-/// point, to the owners of the cells within `haloRings` cells.
+/// point, to the owners of the cells within `haloRings` cells. String,
+/// variant and bit arrays are listed in LocalCloud::Fetched instead. Arrays
+/// that some process with points lacks, or has with fewer tuples than
+/// points, are dropped (LocalCloud::Dropped says why).
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
   asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings,
   const asmcore::Execution& execution = {});
@@ -351,6 +370,16 @@ void RunOnShare(const SimplifyShare& share, asmcore::SimplifyParameters& paramet
 /// size, and whether any process aborted.
 void CombineFigures(const Communication& comm, const SimplifyShare& share,
   asmcore::SimplifyResult& result);
+
+/// Collective, after the core's run: the arrays of `cloud.Fetched` for the
+/// samples of `result`, each sample taking the value of its representative
+/// (cloud.SourceRank, cloud.SourceId): each process asks the processes that
+/// hold its samples' representatives, which read them from their input's
+/// point data `inputPD` and send them back (as a marshalled vtkTable). The
+/// arrays are added to `outPD` in the order of `cloud.Fetched`. Returns false
+/// (and adds nothing) when a reply could not be read.
+bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
+  const LocalCloud& cloud, const asmcore::SimplifyResult& result, vtkPointData* outPD);
 
 /// Drops from `ids` the points flagged as duplicates of another process's
 /// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which

@@ -7,12 +7,15 @@
 #include "Core/Selection.h"
 
 #include "vtkCommunicator.h"
+#include "vtkBitArray.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkMultiProcessController.h"
 #include "vtkMultiProcessStream.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
+#include "vtkStringArray.h"
+#include "vtkVariantArray.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -25,29 +28,51 @@ namespace asmvtk
 //------------------------------------------------------------------------------
 namespace
 {
-// One transferred array: name, VTK type, components, attribute roles, and
-// its place in a point's record (in doubles).
+// One array of a distributed run: name, VTK type, components, attribute
+// roles; numeric arrays travel with the points, as bytes at Offset in each
+// point's record (Width doubles); the others (Fetched) are read for the
+// samples' representatives after the run (FetchRepresentativeValues).
 struct ArraySlot
 {
   std::string Name;
   int Type = VTK_DOUBLE;
   int Components = 1;
   int Attributes = 0; // bit a: the array is attribute a
+  bool Fetched = false;
   int Offset = 0;
   int Width = 0;
 };
 
-bool Transferable(vtkAbstractArray* array)
+// Whether `array` can be passed on in a distributed run, and how (the
+// ghost array is the run's own input, not passed on).
+enum class Travel
 {
-  auto* data = vtkDataArray::SafeDownCast(array);
-  return data && array->GetName() && data->GetDataType() != VTK_BIT &&
-    std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0;
+  WithThePoints, // numeric arrays: their bytes in each point's record
+  Fetched,       // strings, variants, bits: read at the representatives
+  Not,
+};
+Travel HowItTravels(vtkAbstractArray* array)
+{
+  if (std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) == 0)
+  {
+    return Travel::Not;
+  }
+  if (vtkDataArray::SafeDownCast(array) && array->GetDataType() != VTK_BIT)
+  {
+    return Travel::WithThePoints;
+  }
+  return vtkStringArray::SafeDownCast(array) || vtkVariantArray::SafeDownCast(array) ||
+      vtkBitArray::SafeDownCast(array)
+    ? Travel::Fetched
+    : Travel::Not;
 }
 
-// The arrays every process holding points can send, in the order of the
-// first such process; names of the others in `dropped`.
-std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd, bool hasPoints,
-  std::vector<std::string>& dropped)
+// The arrays every process holding points can pass on, in the order of the
+// first such process; names of the others in `dropped` (with the reason).
+// An array must have a tuple for each of the process's `points` points, as
+// on the serial path.
+std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd, Index points,
+  bool hasPoints, std::vector<std::string>& dropped)
 {
   vtkMultiProcessStream stream;
   std::vector<ArraySlot> slots;
@@ -56,12 +81,20 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
     for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
     {
       vtkAbstractArray* array = pd->GetAbstractArray(i);
-      if (!Transferable(array))
+      if (!array->GetName())
       {
-        if (array->GetName() &&
-          std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0)
+        dropped.emplace_back("(unnamed; the processes match arrays by name)");
+        continue;
+      }
+      const Travel travel = HowItTravels(array);
+      if (travel == Travel::Not || array->GetNumberOfTuples() < points ||
+        array->GetNumberOfComponents() < 1)
+      {
+        if (std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0)
         {
-          dropped.push_back(std::string(array->GetName()) + " (not a numeric array)");
+          dropped.push_back(std::string(array->GetName()) +
+            (travel == Travel::Not ? " (an array type a distributed run cannot send)"
+                                   : " (fewer tuples than points)"));
         }
         continue;
       }
@@ -69,6 +102,7 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
       slot.Name = array->GetName();
       slot.Type = array->GetDataType();
       slot.Components = array->GetNumberOfComponents();
+      slot.Fetched = travel == Travel::Fetched;
       for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
       {
         if (pd->GetAbstractAttribute(a) == array)
@@ -94,7 +128,7 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
     stream << static_cast<int>(slots.size());
     for (const ArraySlot& s : slots)
     {
-      stream << s.Name << s.Type << s.Components << s.Attributes;
+      stream << s.Name << s.Type << s.Components << s.Attributes << static_cast<int>(s.Fetched);
     }
   }
   comm.Controller()->Broadcast(stream, root);
@@ -105,10 +139,13 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
   for (int i = 0; i < count; ++i)
   {
     ArraySlot& s = agreed[i];
-    stream >> s.Name >> s.Type >> s.Components >> s.Attributes;
-    vtkDataArray* mine = hasPoints ? pd->GetArray(s.Name.c_str()) : nullptr;
-    if (hasPoints &&
-      (!mine || mine->GetDataType() != s.Type || mine->GetNumberOfComponents() != s.Components))
+    int fetched = 0;
+    stream >> s.Name >> s.Type >> s.Components >> s.Attributes >> fetched;
+    s.Fetched = fetched != 0;
+    const auto same = [&s](const ArraySlot& mine) {
+      return mine.Name == s.Name && mine.Type == s.Type && mine.Components == s.Components;
+    };
+    if (hasPoints && std::none_of(slots.begin(), slots.end(), same))
     {
       present[i] = 0;
     }
@@ -138,7 +175,18 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
 {
   LocalCloud cloud;
   vtkPointData* inPD = input->GetPointData();
-  std::vector<ArraySlot> slots = AgreeOnArrays(comm, inPD, !ids.empty(), cloud.Dropped);
+  std::vector<ArraySlot> slots =
+    AgreeOnArrays(comm, inPD, input->GetNumberOfPoints(), !ids.empty(), cloud.Dropped);
+  // (Strings, variants and bits are read after the run, for the samples.)
+  for (const ArraySlot& s : slots)
+  {
+    if (s.Fetched)
+    {
+      cloud.Fetched.push_back({ s.Name, s.Type, s.Components });
+    }
+  }
+  slots.erase(std::remove_if(slots.begin(), slots.end(), [](const ArraySlot& s) { return s.Fetched; }),
+    slots.end());
   // Record: x y z | arrays (bytes, each padded to whole doubles) | rank id.
   int width = 3;
   for (ArraySlot& s : slots)

@@ -61,7 +61,7 @@ set(ASM_FILTERS_PRIVATE
   vtkASMDistributedMetrics
 )
 # Private sources declared in another private header (paths relative to
-# Filters/): vtkASMDistributed{Feature,Communication,Redistribute}.cxx implement
+# Filters/): vtkASMDistributed{Feature,Communication,Redistribute,Fetch}.cxx implement
 # parts of vtkASMDistributed.h, Core/NeighborsBuild.cxx the build of
 # Core/Neighbors.h's tree, Core/HoleFillingGreedy.cxx a step of
 # Core/HoleFillingSteps.h, Core/PlaneLinkage.cxx the single linkage of
@@ -70,6 +70,7 @@ set(ASM_FILTERS_EXTRA_SOURCES
   vtkASMDistributedFeature.cxx
   vtkASMDistributedCommunication.cxx
   vtkASMDistributedRedistribute.cxx
+  vtkASMDistributedFetch.cxx
   Core/NeighborsBuild.cxx
   Core/HoleFillingGreedy.cxx
   Core/PlaneLinkage.cxx

@@ -295,6 +295,12 @@ int vtkASMSimplify::RequestData(
   vtkPointData* outPD = output->GetPointData();
   asmvtk::AggregatePointData(
     inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this, threads);
+  if (distributed &&
+    !asmvtk::FetchRepresentativeValues(comm, input->GetPointData(), share.Cloud, result, outPD))
+  {
+    vtkWarningMacro(<< "The string, variant and bit arrays could not be read from the other "
+                       "processes: they are not passed on.");
+  }
   asmcore::PointArray<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
   outPD->AddArray(generated.KeyPoint);
   outPD->AddArray(generated.ClusterSize);

@@ -9,7 +9,8 @@ agree with the distributed runs too: a cell's result does not depend on the
 order of its points.
 
 The lattice modes (gridded data, exact ties everywhere, every point twice
-with two labels) compare the same way, their labels exactly too: Key Point Error's planes are fitted to the 8 nearest simplified points,
+with two labels) compare the same way, their labels and the input point
+each sample stands for exactly too: Key Point Error's planes are fitted to the 8 nearest simplified points,
 chosen among equidistant ones by position, not by the order the simplified
 points were gathered in.
 
@@ -40,8 +41,8 @@ for mode, group in sorted(modes.items()):
     assert len(base["table"]) == ns, "%s: %d points" % (base_file, len(base["table"]))
     xyz = base["table"][:, :3]
     diagonal = np.linalg.norm(xyz.max(0) - xyz.min(0))
-    # (The lattice runs add a "Label" column: the representatives' labels.)
-    names = columns + ["Label"] * (base["table"].shape[1] - len(columns))
+    # (The lattice runs add the representatives' labels and input indices.)
+    names = columns + ["Label", "Source"][:base["table"].shape[1] - len(columns)]
     for f, run in group[1:]:
         table = run["table"]
         assert len(table) == ns, "%s: %d points, not %d" % (f, len(table), ns)

@@ -21,7 +21,8 @@ gridded data instead of the bunny, whose points tie exactly everywhere: a
 150 x 150 lattice over [-3, 3]^2 with a stepped height z = 0.1 floor(x + y),
 every point twice, the copies with different labels (an integer array,
 "Label", taken from each sample's representative: 5, the copy whose values
-come first); each cell is processed in its canonical order
+come first), the representatives' indices compared too ("Source", from a
+string array); each cell is processed in its canonical order
 (asmcore::CanonicalOrder), so the serial path, which reads the points in
 input order, and the distributed runs, which receive them in another, agree.
 Optional third argument "serial": pvbatch started without mpiexec (one
@@ -35,7 +36,7 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -63,7 +64,14 @@ else:
 # Interleaved split by a hash of the point index, reversed order.
 index = np.arange(len(xyz), dtype=np.uint64)
 owner = ((index * np.uint64(2654435761)) % np.uint64(2 ** 32)) % np.uint64(size)
-mine = np.nonzero(owner == rank)[0][::-1]
+
+
+def points_of(process):
+    """The indices (into xyz) of the points process `process` holds, in its order."""
+    return np.nonzero(owner == process)[0][::-1]
+
+
+mine = points_of(rank)
 points = vtkPoints()
 points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
 piece = vtkPolyData()
@@ -81,6 +89,16 @@ if LATTICE:
     label = numpy_to_vtk(np.ascontiguousarray(labels[mine]), deep=1)
     label.SetName("Label")
     piece.GetPointData().AddArray(label)
+# A string array (it does not travel with the points: a distributed run reads
+# it at the samples' representatives after the run): each point's index in
+# xyz, which every sample must carry for its representative (and, on the
+# lattice, the copy whose label comes first: the string comes after the
+# label, so the label decides, on the serial path too).
+names = vtkStringArray()
+names.SetName("Point name")
+for g in mine:
+    names.InsertNextValue("point %d" % g)
+piece.GetPointData().AddArray(names)
 
 asm = vtkASMSimplify()
 asm.SetInputData(piece)
@@ -113,6 +131,18 @@ out = asm.GetOutput()
 assert (out.GetPointData().GetArray("vtkOriginalProcessIds") is not None) == (not SERIAL), \
     "a run under mpiexec is distributed, a run without it is not"
 
+# Each sample's string is its representative's (vtkOriginalPointIds on the
+# process vtkOriginalProcessIds names; on the serial path, this process).
+out_names = out.GetPointData().GetAbstractArray("Point name")
+assert out_names is not None and out_names.GetNumberOfValues() == out.GetNumberOfPoints()
+representative = vtk_to_numpy(out.GetPointData().GetArray("vtkOriginalPointIds"))
+source_process = (np.zeros(len(representative), dtype=int) if SERIAL
+                  else vtk_to_numpy(out.GetPointData().GetArray("vtkOriginalProcessIds")))
+sources = np.array([points_of(r)[i] for r, i in zip(source_process, representative)], dtype=np.int64)
+carried = np.array([int(out_names.GetValue(i).split()[1]) for i in range(out.GetNumberOfPoints())],
+                   dtype=np.int64)
+assert np.array_equal(carried, sources), np.count_nonzero(carried != sources)
+
 kpe = vtkKeyPointError()
 kpe.SetInputData(0, piece)
 kpe.SetInputConnection(1, asm.GetOutputPort())
@@ -138,6 +168,8 @@ for name in ("Value", "MeanCurvature", "KeyPoint", "ClusterSize"):
 columns.append(vtk_to_numpy(mpd.GetArray("Error")).astype(np.float64) if n else np.zeros(0))
 if LATTICE:
     columns.append(vtk_to_numpy(pd.GetArray("Label")).astype(np.float64) if n else np.zeros(0))
+    # Which input point each sample stands for: the same in every run.
+    columns.append(carried.astype(np.float64))
 table = gather(columns)
 fd = out.GetFieldData()
 mfd = measured.GetFieldData()

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The point-data arrays of vtkASMSimplify's distributed path (one process:
+// a vtkDummyController with AlwaysDistribute) against the serial path's:
+// string, variant and bit arrays, which do not travel with the points, are
+// read at the samples' representatives after the run and give what the
+// serial path gives; an array with fewer tuples than points is dropped with
+// a warning on both paths (never read past its end).
+#include "FilterHelpers.h"
+
+#include "vtkBitArray.h"
+#include "vtkDummyController.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkPointData.h"
+#include "vtkStringArray.h"
+#include "vtkVariantArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace
+{
+// The name, variant and bit of input point i.
+std::string NameOf(vtkIdType i)
+{
+  return "point " + std::to_string(i);
+}
+vtkVariant VariantOf(vtkIdType i)
+{
+  return i % 2 ? vtkVariant(static_cast<int>(i)) : vtkVariant("v" + std::to_string(i));
+}
+int BitOf(vtkIdType i)
+{
+  return i % 3 == 0 ? 1 : 0;
+}
+
+// A sphere with a string, a variant and a two-component bit array.
+vtkSmartPointer<vtkPolyData> SphereWithArrays()
+{
+  vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(asmtest::Sphere(6000, 1.0, 5));
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkNew<vtkStringArray> names;
+  names->SetName("Point name");
+  vtkNew<vtkVariantArray> variants;
+  variants->SetName("Variant");
+  vtkNew<vtkBitArray> bits;
+  bits->SetName("Bits");
+  bits->SetNumberOfComponents(2);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    names->InsertNextValue(NameOf(i));
+    variants->InsertNextValue(VariantOf(i));
+    bits->InsertNextValue(BitOf(i));
+    bits->InsertNextValue(1 - BitOf(i));
+  }
+  input->GetPointData()->AddArray(names);
+  input->GetPointData()->AddArray(variants);
+  input->GetPointData()->AddArray(bits);
+  return input;
+}
+
+// `input` simplified to 300 points, on the distributed path or not; warnings
+// counted.
+vtkSmartPointer<vtkPolyData> SimplifyTo300(vtkPolyData* input, int mode, bool distributed, int& warnings)
+{
+  asmtest::FilterRun run;
+  vtkNew<vtkDummyController> controller;
+  if (distributed)
+  {
+    run.Filter->SetController(controller);
+    run.Filter->AlwaysDistributeOn();
+  }
+  run.Filter->SetMode(mode);
+  run.Count(300);
+  vtkSmartPointer<vtkPolyData> out = run.Execute(input);
+  warnings = run.Messages->Warnings;
+  EXPECT_EQ(run.Messages->Errors, 0);
+  EXPECT_EQ(out->GetPointData()->GetArray("vtkOriginalProcessIds") != nullptr, distributed);
+  return out;
+}
+} // namespace
+
+TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
+{
+  const vtkSmartPointer<vtkPolyData> input = SphereWithArrays();
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    // (x, y, z, name) of every sample, sorted: serial and distributed runs.
+    using Row = std::tuple<double, double, double, std::string>;
+    std::vector<Row> rows[2];
+    for (bool distributed : { false, true })
+    {
+      const std::string what = "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
+      int warnings = 0;
+      vtkSmartPointer<vtkPolyData> out = SimplifyTo300(input, mode, distributed, warnings);
+      EXPECT_EQ(warnings, 0) << what << ": every array is passed on";
+      vtkPointData* pd = out->GetPointData();
+      auto* ids = vtkIdTypeArray::SafeDownCast(pd->GetArray("vtkOriginalPointIds"));
+      auto* names = vtkStringArray::SafeDownCast(pd->GetAbstractArray("Point name"));
+      auto* variants = vtkVariantArray::SafeDownCast(pd->GetAbstractArray("Variant"));
+      auto* bits = vtkBitArray::SafeDownCast(pd->GetAbstractArray("Bits"));
+      ASSERT_TRUE(ids && names && variants && bits) << what;
+      ASSERT_EQ(out->GetNumberOfPoints(), 300) << what;
+      ASSERT_EQ(names->GetNumberOfValues(), 300) << what;
+      ASSERT_EQ(bits->GetNumberOfComponents(), 2) << what;
+      int wrong = 0;
+      for (vtkIdType s = 0; s < 300; ++s)
+      {
+        // The representative's own values, whichever process holds it.
+        const vtkIdType id = ids->GetValue(s);
+        const vtkVariant v = variants->GetValue(s);
+        wrong += names->GetValue(s) != NameOf(id) || v.GetType() != VariantOf(id).GetType() ||
+            v.ToString() != VariantOf(id).ToString() || bits->GetValue(2 * s) != BitOf(id) ||
+            bits->GetValue(2 * s + 1) != 1 - BitOf(id)
+          ? 1
+          : 0;
+        double p[3];
+        out->GetPoint(s, p);
+        rows[distributed].emplace_back(p[0], p[1], p[2], names->GetValue(s));
+      }
+      EXPECT_EQ(wrong, 0) << what;
+      std::sort(rows[distributed].begin(), rows[distributed].end());
+    }
+    EXPECT_EQ(rows[1], rows[0]) << "mode " << mode << ": the distributed run gives the serial one";
+  }
+}
+
+TEST(DistributedArrays, ArraysShorterThanThePointsAreDroppedOnBothPaths)
+{
+  vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(asmtest::Sphere(6000, 1.0, 7));
+  vtkNew<vtkFloatArray> shortArray; // (2 tuples for 6000 points)
+  shortArray->SetName("Short");
+  shortArray->SetNumberOfTuples(2);
+  shortArray->SetValue(0, 1.0f);
+  shortArray->SetValue(1, 2.0f);
+  input->GetPointData()->AddArray(shortArray);
+  vtkNew<vtkStringArray> shortNames;
+  shortNames->SetName("Short names");
+  shortNames->InsertNextValue("only one");
+  input->GetPointData()->AddArray(shortNames);
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    for (bool distributed : { false, true })
+    {
+      const std::string what = "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
+      int warnings = 0;
+      vtkSmartPointer<vtkPolyData> out = SimplifyTo300(input, mode, distributed, warnings);
+      EXPECT_EQ(out->GetNumberOfPoints(), 300) << what;
+      EXPECT_EQ(out->GetPointData()->GetAbstractArray("Short"), nullptr) << what;
+      EXPECT_EQ(out->GetPointData()->GetAbstractArray("Short names"), nullptr) << what;
+      EXPECT_GE(warnings, 1) << what << ": the user is told";
+    }
+  }
+}
