@@ -43,8 +43,7 @@ struct ArraySlot
   int Width = 0;
 };
 
-// Whether `array` can be passed on in a distributed run, and how (the
-// ghost array is the run's own input, not passed on).
+// Whether `array` can be passed on in a distributed run, and how.
 enum class Travel
 {
   WithThePoints, // numeric arrays: their bytes in each point's record
@@ -53,10 +52,6 @@ enum class Travel
 };
 Travel HowItTravels(vtkAbstractArray* array)
 {
-  if (std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) == 0)
-  {
-    return Travel::Not;
-  }
   if (vtkDataArray::SafeDownCast(array) && array->GetDataType() != VTK_BIT)
   {
     return Travel::WithThePoints;
@@ -86,16 +81,17 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
         dropped.emplace_back("(unnamed; the processes match arrays by name)");
         continue;
       }
+      if (std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) == 0)
+      {
+        continue; // (the run's own input: duplicate points are skipped)
+      }
       const Travel travel = HowItTravels(array);
       if (travel == Travel::Not || array->GetNumberOfTuples() < points ||
         array->GetNumberOfComponents() < 1)
       {
-        if (std::strcmp(array->GetName(), vtkDataSetAttributes::GhostArrayName()) != 0)
-        {
-          dropped.push_back(std::string(array->GetName()) +
-            (travel == Travel::Not ? " (an array type a distributed run cannot send)"
-                                   : " (fewer tuples than points)"));
-        }
+        dropped.push_back(std::string(array->GetName()) +
+          (travel == Travel::Not ? " (an array type a distributed run cannot send)"
+                                 : " (fewer tuples than points)"));
         continue;
       }
       ArraySlot slot;
