@@ -36,7 +36,8 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
+from vtkmodules.vtkCommonCore import (vtkBitArray, vtkDoubleArray, vtkPoints, vtkStringArray,
+                                      vtkVariant, vtkVariantArray)
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -94,11 +95,25 @@ if LATTICE:
 # xyz, which every sample must carry for its representative (and, on the
 # lattice, the copy whose label comes first: the string comes after the
 # label, so the label decides, on the serial path too).
+# A variant and a bit array travel the same way.
 names = vtkStringArray()
 names.SetName("Point name")
+variants = vtkVariantArray()
+variants.SetName("Point variant")
+bits = vtkBitArray()
+bits.SetName("Point bit")
+
+
+def variant_of(g):
+    return vtkVariant(int(g)) if g % 2 else vtkVariant("v%d" % g)
+
+
 for g in mine:
     names.InsertNextValue("point %d" % g)
-piece.GetPointData().AddArray(names)
+    variants.InsertNextValue(variant_of(g))
+    bits.InsertNextValue(int(g % 3 == 0))
+for array in (names, variants, bits):
+    piece.GetPointData().AddArray(array)
 
 asm = vtkASMSimplify()
 asm.SetInputData(piece)
@@ -142,6 +157,13 @@ sources = np.array([points_of(r)[i] for r, i in zip(source_process, representati
 carried = np.array([int(out_names.GetValue(i).split()[1]) for i in range(out.GetNumberOfPoints())],
                    dtype=np.int64)
 assert np.array_equal(carried, sources), np.count_nonzero(carried != sources)
+out_variants = out.GetPointData().GetAbstractArray("Point variant")
+out_bits = out.GetPointData().GetAbstractArray("Point bit")
+assert out_variants is not None and out_bits is not None
+for i, g in enumerate(sources):
+    v = out_variants.GetValue(i)
+    assert v.GetType() == variant_of(g).GetType() and v.ToString() == variant_of(g).ToString(), (i, g)
+    assert out_bits.GetValue(i) == int(g % 3 == 0), (i, g)
 
 kpe = vtkKeyPointError()
 kpe.SetInputData(0, piece)
