@@ -375,7 +375,8 @@ void CombineFigures(const Communication& comm, const SimplifyShare& share,
 /// samples of `result`, each sample taking the value of its representative
 /// (cloud.SourceRank, cloud.SourceId): each process asks the processes that
 /// hold its samples' representatives, which read them from their input's
-/// point data `inputPD` and send them back (as a marshalled vtkTable). The
+/// point data `inputPD` and send them back (an exact encoding: strings as
+/// bytes, variants with their type, bits as bytes). The
 /// arrays are added to `outPD` in the order of `cloud.Fetched`. Returns false
 /// (and adds nothing) when a reply could not be read.
 bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,

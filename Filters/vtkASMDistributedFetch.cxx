@@ -5,24 +5,25 @@
 #include "vtkASMDistributed.h"
 
 #include "vtkAbstractArray.h"
-#include "vtkCharArray.h"
-#include "vtkCommunicator.h"
-#include "vtkDataArray.h"
-#include "vtkNew.h"
+#include "vtkBitArray.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "vtkTable.h"
+#include "vtkStringArray.h"
+#include "vtkVariant.h"
+#include "vtkVariantArray.h"
 
+#include <cstdint>
 #include <cstring>
+#include <string>
 
 namespace asmvtk
 {
 namespace
 {
-// Messages are runs of long longs: a count, then that many values (ids, or
-// the bytes of a marshalled vtkTable packed 8 to a value). Every process
-// sends one message to every process, empty ones included, so that the
-// received runs come one per process, in process order.
+// Messages are runs of long longs: a size in bytes, then the bytes (ids, or
+// encoded values) packed 8 to a value. Every process sends one message to
+// every process, empty ones included, so that the received runs come one
+// per process, in process order.
 void AppendMessage(asmcore::PointArray<long long>& to, const void* bytes, std::size_t size)
 {
   const std::size_t at = to.size();
@@ -34,10 +35,10 @@ void AppendMessage(asmcore::PointArray<long long>& to, const void* bytes, std::s
   }
 }
 
-// The messages of `received`, one per process: (first value, size in bytes);
+// The messages of `received`, one per process: (first byte, size in bytes);
 // false when they do not add up.
 bool SplitMessages(const asmcore::PointArray<long long>& received, int processes,
-  std::vector<std::pair<const long long*, std::size_t>>& messages)
+  std::vector<std::pair<const char*, std::size_t>>& messages)
 {
   messages.clear();
   std::size_t at = 0;
@@ -53,34 +54,183 @@ bool SplitMessages(const asmcore::PointArray<long long>& received, int processes
     {
       return false;
     }
-    messages.emplace_back(received.data() + at + 1, size);
+    messages.emplace_back(reinterpret_cast<const char*>(received.data() + at + 1), size);
     at += 1 + words;
   }
   return at == received.size();
 }
 
-// The type an array's values travel as: bit arrays as unsigned chars (VTK's
-// legacy reader, which unmarshals the tables, fails on some binary bit
-// arrays).
-int TransportType(int type)
+// The values' encoding, exact for every type (VTK's legacy marshalling
+// writes variants with 6 digits): a bit as a byte; a string as its length
+// (8 bytes) and bytes; a variant as a kind byte, its VTK type (4 bytes) and
+// a string, or a number as 8 bytes (floating types as a double, integers as
+// 64-bit integers); a variant holding anything else (a VTK object) as an
+// empty one.
+enum VariantKind : unsigned char
 {
-  return type == VTK_BIT ? VTK_UNSIGNED_CHAR : type;
+  Empty = 0,
+  Text = 1,
+  Floating = 2,
+  Signed = 3,
+  Unsigned = 4,
+};
+
+class Writer
+{
+public:
+  std::vector<char> Bytes;
+  template <typename T>
+  void Put(const T& value)
+  {
+    const char* p = reinterpret_cast<const char*>(&value);
+    this->Bytes.insert(this->Bytes.end(), p, p + sizeof(T));
+  }
+  void PutString(const std::string& s)
+  {
+    this->Put(static_cast<std::uint64_t>(s.size()));
+    this->Bytes.insert(this->Bytes.end(), s.begin(), s.end());
+  }
+  void PutVariant(const vtkVariant& v)
+  {
+    const int type = v.IsValid() ? static_cast<int>(v.GetType()) : 0;
+    if (v.IsString())
+    {
+      this->Put(static_cast<unsigned char>(Text));
+      this->Put(type);
+      this->PutString(v.ToString());
+    }
+    else if (v.IsFloat() || v.IsDouble())
+    {
+      this->Put(static_cast<unsigned char>(Floating));
+      this->Put(type);
+      this->Put(v.ToDouble());
+    }
+    else if (v.IsNumeric() && (type == VTK_UNSIGNED_LONG_LONG || type == VTK_UNSIGNED_LONG))
+    {
+      this->Put(static_cast<unsigned char>(Unsigned));
+      this->Put(type);
+      this->Put(static_cast<std::uint64_t>(v.ToUnsignedLongLong()));
+    }
+    else if (v.IsNumeric())
+    {
+      this->Put(static_cast<unsigned char>(Signed));
+      this->Put(type);
+      this->Put(static_cast<std::int64_t>(v.ToLongLong()));
+    }
+    else
+    {
+      this->Put(static_cast<unsigned char>(Empty));
+    }
+  }
+};
+
+class Reader
+{
+public:
+  Reader(const char* data, std::size_t size)
+    : At(data)
+    , End(data + size)
+  {
+  }
+  bool Good() const { return this->Ok; }
+  bool Finished() const { return this->Ok && this->At == this->End; }
+  template <typename T>
+  T Get()
+  {
+    T value{};
+    if (!this->Ok || static_cast<std::size_t>(this->End - this->At) < sizeof(T))
+    {
+      this->Ok = false;
+      return value;
+    }
+    std::memcpy(&value, this->At, sizeof(T));
+    this->At += sizeof(T);
+    return value;
+  }
+  std::string GetString()
+  {
+    const auto size = this->Get<std::uint64_t>();
+    if (!this->Ok || static_cast<std::uint64_t>(this->End - this->At) < size)
+    {
+      this->Ok = false;
+      return {};
+    }
+    std::string s(this->At, static_cast<std::size_t>(size));
+    this->At += size;
+    return s;
+  }
+  vtkVariant GetVariant()
+  {
+    const auto kind = this->Get<unsigned char>();
+    if (kind == Empty)
+    {
+      return {};
+    }
+    const auto type = static_cast<unsigned int>(this->Get<int>());
+    vtkVariant value;
+    switch (kind)
+    {
+      case Text:
+        value = vtkVariant(this->GetString());
+        break;
+      case Floating:
+        value = vtkVariant(this->Get<double>());
+        break;
+      case Signed:
+        value = vtkVariant(static_cast<long long>(this->Get<std::int64_t>()));
+        break;
+      case Unsigned:
+        value = vtkVariant(static_cast<unsigned long long>(this->Get<std::uint64_t>()));
+        break;
+      default:
+        this->Ok = false;
+        return {};
+    }
+    // (Back to the type it had: a float, a char, a vtkStdString...)
+    return type == value.GetType() ? value : vtkVariant(value, type);
+  }
+
+private:
+  const char* At;
+  const char* End;
+  bool Ok = true;
+};
+
+// Writes value `component` of tuple `id` of `array` (a string, variant or
+// bit array).
+void Encode(vtkAbstractArray* array, vtkIdType id, int component, Writer& out)
+{
+  const vtkIdType at = id * array->GetNumberOfComponents() + component;
+  if (auto* strings = vtkStringArray::SafeDownCast(array))
+  {
+    out.PutString(strings->GetValue(at));
+  }
+  else if (auto* variants = vtkVariantArray::SafeDownCast(array))
+  {
+    out.PutVariant(variants->GetValue(at));
+  }
+  else
+  {
+    out.Put(static_cast<unsigned char>(vtkBitArray::SafeDownCast(array)->GetValue(at)));
+  }
 }
 
-// to[i] = from[j], tuples of arrays of one type, or of two numeric types.
-void CopyTuple(vtkAbstractArray* to, vtkIdType i, vtkAbstractArray* from, vtkIdType j)
+// Reads value `component` of tuple `s` of `array` (of the same kind).
+void Decode(Reader& in, vtkAbstractArray* array, vtkIdType s, int component)
 {
-  auto* numericTo = vtkDataArray::SafeDownCast(to);
-  auto* numericFrom = vtkDataArray::SafeDownCast(from);
-  if (numericTo && numericFrom && to->GetDataType() != from->GetDataType())
+  const vtkIdType at = s * array->GetNumberOfComponents() + component;
+  if (auto* strings = vtkStringArray::SafeDownCast(array))
   {
-    for (int c = 0; c < to->GetNumberOfComponents(); ++c)
-    {
-      numericTo->SetComponent(i, c, numericFrom->GetComponent(j, c));
-    }
-    return;
+    strings->SetValue(at, in.GetString());
   }
-  to->SetTuple(i, j, from);
+  else if (auto* variants = vtkVariantArray::SafeDownCast(array))
+  {
+    variants->SetValue(at, in.GetVariant());
+  }
+  else
+  {
+    vtkBitArray::SafeDownCast(array)->SetValue(at, in.Get<unsigned char>() ? 1 : 0);
+  }
 }
 } // namespace
 
@@ -95,12 +245,14 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   const int processes = comm.Size();
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   // 1. Requests: the representatives' ids, to the processes holding them,
-  // in sample order.
+  // in sample order (samplesFrom[r]: the samples whose values r sends).
   std::vector<std::vector<long long>> asked(static_cast<std::size_t>(processes));
-  for (const asmcore::Sample& sample : result.Samples)
+  std::vector<std::vector<vtkIdType>> samplesFrom(static_cast<std::size_t>(processes));
+  for (vtkIdType s = 0; s < count; ++s)
   {
-    const Index r = sample.Representative;
+    const Index r = result.Samples[s].Representative;
     asked[cloud.SourceRank[r]].push_back(cloud.SourceId[r]);
+    samplesFrom[cloud.SourceRank[r]].push_back(s);
   }
   std::vector<asmcore::PointArray<long long>> send(static_cast<std::size_t>(processes));
   for (int r = 0; r < processes; ++r)
@@ -108,75 +260,50 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
     AppendMessage(send[r], asked[r].data(), asked[r].size() * sizeof(long long));
   }
   const asmcore::PointArray<long long> requests = comm.Exchange(send);
-  std::vector<std::pair<const long long*, std::size_t>> messages;
+  std::vector<std::pair<const char*, std::size_t>> messages;
   bool readable = SplitMessages(requests, processes, messages);
 
   // 2. Replies: the values at the ids each process asked for, in its order,
-  // as the rows of a table (any array type; marshalled by VTK).
+  // array by array.
+  std::vector<vtkAbstractArray*> sources;
+  for (const FetchedArray& f : fetched)
+  {
+    sources.push_back(inputPD ? inputPD->GetAbstractArray(f.Name.c_str()) : nullptr);
+  }
   send.assign(static_cast<std::size_t>(processes), {});
+  Writer writer;
   for (int r = 0; r < processes; ++r)
   {
     const std::size_t rows = readable ? messages[r].second / sizeof(long long) : 0;
-    if (rows == 0)
+    writer.Bytes.clear();
+    for (std::size_t a = 0; rows > 0 && a < fetched.size(); ++a)
     {
-      AppendMessage(send[r], nullptr, 0);
-      continue;
-    }
-    vtkNew<vtkTable> table;
-    for (const FetchedArray& f : fetched)
-    {
-      vtkAbstractArray* source = inputPD->GetAbstractArray(f.Name.c_str());
-      auto column = vtk::TakeSmartPointer(vtkAbstractArray::CreateArray(TransportType(f.Type)));
-      column->SetName(f.Name.c_str());
-      column->SetNumberOfComponents(f.Components);
-      column->SetNumberOfTuples(static_cast<vtkIdType>(rows));
       for (std::size_t j = 0; j < rows; ++j)
       {
-        const long long id = messages[r].first[j];
-        if (source && id >= 0 && id < source->GetNumberOfTuples())
+        long long id;
+        std::memcpy(&id, messages[r].first + j * sizeof(long long), sizeof(id));
+        // (The arrays were agreed on: a source has a tuple for every point.)
+        const bool valid = sources[a] && id >= 0 && id < sources[a]->GetNumberOfTuples();
+        for (int c = 0; c < fetched[a].Components; ++c)
         {
-          CopyTuple(column, static_cast<vtkIdType>(j), source, static_cast<vtkIdType>(id));
+          if (valid)
+          {
+            Encode(sources[a], static_cast<vtkIdType>(id), c, writer);
+          }
+          else
+          {
+            readable = false;
+          }
         }
       }
-      table->AddColumn(column);
     }
-    vtkNew<vtkCharArray> bytes;
-    vtkCommunicator::MarshalDataObject(table, bytes);
-    AppendMessage(send[r], bytes->GetPointer(0), static_cast<std::size_t>(bytes->GetNumberOfValues()));
+    AppendMessage(send[r], writer.Bytes.data(), readable ? writer.Bytes.size() : 0);
   }
   const asmcore::PointArray<long long> replies = comm.Exchange(send);
   readable = SplitMessages(replies, processes, messages) && readable;
 
-  // 3. The output arrays: sample s takes the next row of the table from the
-  // process that holds its representative.
-  std::vector<vtkSmartPointer<vtkTable>> tables(static_cast<std::size_t>(processes));
-  std::vector<std::vector<vtkAbstractArray*>> columns(static_cast<std::size_t>(processes));
-  for (int r = 0; readable && r < processes; ++r)
-  {
-    if (messages[r].second == 0)
-    {
-      readable = asked[r].empty();
-      continue;
-    }
-    vtkNew<vtkCharArray> bytes;
-    bytes->SetNumberOfValues(static_cast<vtkIdType>(messages[r].second));
-    std::memcpy(bytes->GetPointer(0), messages[r].first, messages[r].second);
-    tables[r] = vtkSmartPointer<vtkTable>::New();
-    readable = vtkCommunicator::UnMarshalDataObject(bytes, tables[r]) != 0 &&
-      tables[r]->GetNumberOfRows() == static_cast<vtkIdType>(asked[r].size());
-    for (std::size_t a = 0; readable && a < fetched.size(); ++a)
-    {
-      vtkAbstractArray* column = tables[r]->GetColumnByName(fetched[a].Name.c_str());
-      readable = column && column->GetDataType() == TransportType(fetched[a].Type) &&
-        column->GetNumberOfComponents() == fetched[a].Components;
-      columns[r].push_back(column);
-    }
-  }
-  if (!readable)
-  {
-    return false;
-  }
-  std::vector<vtkIdType> next(static_cast<std::size_t>(processes), 0);
+  // 3. The output arrays: the samples of samplesFrom[r] take the values of
+  // r's reply, in order.
   std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
   for (const FetchedArray& f : fetched)
   {
@@ -186,14 +313,24 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
     array->SetNumberOfTuples(count);
     arrays.push_back(array);
   }
-  for (vtkIdType s = 0; s < count; ++s)
+  for (int r = 0; readable && r < processes; ++r)
   {
-    const int r = cloud.SourceRank[result.Samples[s].Representative];
-    const vtkIdType row = next[r]++;
+    Reader reader(messages[r].first, messages[r].second);
     for (std::size_t a = 0; a < fetched.size(); ++a)
     {
-      CopyTuple(arrays[a], s, columns[r][a], row);
+      for (vtkIdType s : samplesFrom[r])
+      {
+        for (int c = 0; c < fetched[a].Components; ++c)
+        {
+          Decode(reader, arrays[a], s, c);
+        }
+      }
     }
+    readable = reader.Finished();
+  }
+  if (!readable)
+  {
+    return false;
   }
   for (const auto& array : arrays)
   {
