@@ -253,6 +253,7 @@ struct LocalCloud
   asmcore::IdView Ids() const { return asmcore::IdView::Identity(this->Xyz.size() / 3); }
   vtkSmartPointer<vtkPointData> PointData;  ///< the transferred arrays
   std::vector<FetchedArray> Fetched;        ///< arrays read after the run
+  std::vector<std::string> ArrayOrder;      ///< every array passed on, in input order
   std::vector<std::string> Dropped;         ///< arrays not transferred (and why)
 };
 
@@ -376,9 +377,10 @@ void CombineFigures(const Communication& comm, const SimplifyShare& share,
 /// (cloud.SourceRank, cloud.SourceId): each process asks the processes that
 /// hold its samples' representatives, which read them from their input's
 /// point data `inputPD` and send them back (an exact encoding: strings as
-/// bytes, variants with their type, bits as bytes). The
-/// arrays are added to `outPD` in the order of `cloud.Fetched`. Returns false
-/// (and adds nothing) when a reply could not be read.
+/// bytes, variants with their type, bits as bytes). The arrays are added to
+/// `outPD`, which then holds its arrays in the input's order
+/// (cloud.ArrayOrder), as on the serial path. Returns false (and adds
+/// nothing) when a reply could not be read.
 bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   const LocalCloud& cloud, const asmcore::SimplifyResult& result, vtkPointData* outPD);
 

@@ -12,6 +12,7 @@
 #include "vtkVariant.h"
 #include "vtkVariantArray.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -232,6 +233,51 @@ void Decode(Reader& in, vtkAbstractArray* array, vtkIdType s, int component)
     vtkBitArray::SafeDownCast(array)->SetValue(at, in.Get<unsigned char>() ? 1 : 0);
   }
 }
+
+// Puts the arrays of `pd` named in `order` first, in that order (the others
+// after them, as they were), keeping the attribute roles.
+void PlaceInOrder(vtkPointData* pd, const std::vector<std::string>& order)
+{
+  std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+  for (const std::string& name : order)
+  {
+    if (vtkAbstractArray* array = pd->GetAbstractArray(name.c_str()))
+    {
+      arrays.emplace_back(array);
+    }
+  }
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = pd->GetAbstractArray(i);
+    if (std::find(arrays.begin(), arrays.end(), array) == arrays.end())
+    {
+      arrays.emplace_back(array);
+    }
+  }
+  std::vector<int> roles(arrays.size(), 0); // bit a: the array is attribute a
+  for (std::size_t i = 0; i < arrays.size(); ++i)
+  {
+    for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+    {
+      roles[i] |= pd->GetAbstractAttribute(a) == arrays[i] ? 1 << a : 0;
+    }
+  }
+  while (pd->GetNumberOfArrays() > 0)
+  {
+    pd->RemoveArray(pd->GetNumberOfArrays() - 1);
+  }
+  for (std::size_t i = 0; i < arrays.size(); ++i)
+  {
+    const int index = pd->AddArray(arrays[i]);
+    for (int a = 0; a < vtkDataSetAttributes::NUM_ATTRIBUTES; ++a)
+    {
+      if (roles[i] & (1 << a))
+      {
+        pd->SetActiveAttribute(index, a);
+      }
+    }
+  }
+}
 } // namespace
 
 bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
@@ -336,6 +382,7 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   {
     outPD->AddArray(array);
   }
+  PlaceInOrder(outPD, cloud.ArrayOrder);
   return true;
 }
 } // namespace asmvtk

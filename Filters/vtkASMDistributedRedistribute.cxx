@@ -176,6 +176,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   // (Strings, variants and bits are read after the run, for the samples.)
   for (const ArraySlot& s : slots)
   {
+    cloud.ArrayOrder.push_back(s.Name);
     if (s.Fetched)
     {
       cloud.Fetched.push_back({ s.Name, s.Type, s.Components });

@@ -107,9 +107,9 @@
  * (every process makes the moves of a serial run), the halo cells' samples
  * are exchanged after every step (weighted FinalLloydIterations widen the
  * halo to 6 cell rings), and BoundSnappedHoles runs over all processes. The
- * serial path gives the same points too, and the same point-data arrays
- * (string, variant and bit arrays are read at the representatives after
- * the run; they come after the numeric ones). An array that some process
+ * serial path gives the same points too, and the same point-data arrays in
+ * the same order (string, variant and bit arrays are read at the
+ * representatives after the run). An array that some process
  * with points lacks or has with fewer tuples than points is dropped with a
  * warning.
  * Design and limits: vtkASMDistributed.h.

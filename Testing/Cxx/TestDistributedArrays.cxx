@@ -3,14 +3,16 @@
 // a vtkDummyController with AlwaysDistribute) against the serial path's:
 // string, variant and bit arrays, which do not travel with the points, are
 // read at the samples' representatives after the run and give what the
-// serial path gives; an array with fewer tuples than points is dropped with
-// a warning on both paths (never read past its end).
+// serial path gives, in the input's order of arrays; an array with fewer
+// tuples than points is dropped with a warning on both paths (never read
+// past its end).
 #include "FilterHelpers.h"
 
 #include "vtkBitArray.h"
 #include "vtkDummyController.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkPointData.h"
 #include "vtkStringArray.h"
 #include "vtkVariantArray.h"
@@ -94,8 +96,20 @@ vtkSmartPointer<vtkPolyData> SphereWithArrays()
     bits->InsertNextValue(BitOf(i));
     bits->InsertNextValue(1 - BitOf(i));
   }
+  // (Numeric arrays in between: the output keeps the input's order.)
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  vtkNew<vtkIntArray> label;
+  label->SetName("Label");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    intensity->InsertNextValue(static_cast<float>(i % 100));
+    label->InsertNextValue(static_cast<int>(i % 5));
+  }
   input->GetPointData()->AddArray(names);
+  input->GetPointData()->AddArray(intensity);
   input->GetPointData()->AddArray(variants);
+  input->GetPointData()->AddArray(label);
   input->GetPointData()->AddArray(bits);
   return input;
 }
@@ -129,6 +143,7 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
     // (x, y, z, name) of every sample, sorted: serial and distributed runs.
     using Row = std::tuple<double, double, double, std::string>;
     std::vector<Row> rows[2];
+    std::vector<std::string> arrayNames[2]; // (vtkOriginalProcessIds left out)
     for (bool distributed : { false, true })
     {
       const std::string what = "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
@@ -160,9 +175,21 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
         rows[distributed].emplace_back(p[0], p[1], p[2], names->GetValue(s));
       }
       EXPECT_EQ(wrong, 0) << what;
+      for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+      {
+        const std::string name = pd->GetArrayName(a);
+        if (name != "vtkOriginalProcessIds")
+        {
+          arrayNames[distributed].push_back(name);
+        }
+      }
       std::sort(rows[distributed].begin(), rows[distributed].end());
     }
     EXPECT_EQ(rows[1], rows[0]) << "mode " << mode << ": the distributed run gives the serial one";
+    EXPECT_EQ(arrayNames[1], arrayNames[0]) << "mode " << mode << ": arrays in the same order";
+    ASSERT_GE(arrayNames[0].size(), 5u);
+    EXPECT_EQ(arrayNames[0][0], "Point name");
+    EXPECT_EQ(arrayNames[0][4], "Bits");
   }
 }
 
