@@ -131,7 +131,9 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
   int count = 0;
   stream >> count;
   std::vector<ArraySlot> agreed(static_cast<std::size_t>(count));
-  std::vector<long long> present(static_cast<std::size_t>(count), 1);
+  // (Votes of the processes with points only: a process without points has
+  // no arrays, and must not count for or against one.)
+  std::vector<long long> present(static_cast<std::size_t>(count), 0);
   for (int i = 0; i < count; ++i)
   {
     ArraySlot& s = agreed[i];
@@ -141,10 +143,7 @@ std::vector<ArraySlot> AgreeOnArrays(const Communication& comm, vtkPointData* pd
     const auto same = [&s](const ArraySlot& mine) {
       return mine.Name == s.Name && mine.Type == s.Type && mine.Components == s.Components;
     };
-    if (hasPoints && std::none_of(slots.begin(), slots.end(), same))
-    {
-      present[i] = 0;
-    }
+    present[i] = hasPoints && std::any_of(slots.begin(), slots.end(), same) ? 1 : 0;
   }
   std::vector<long long> votes = present;
   comm.Sum(votes); // an array must be on every process with points

@@ -7,7 +7,9 @@ a mean over the processes, and its hole filling gathers rankings and removal
 costs as many times as its data asks: a process without points serves
 those collectives with nothing until every process is done), so the run
 ends (no hang: the test's timeout) with exactly N_s points over the
-processes, none of them on a process without points. The feature mode runs
+processes, none of them on a process without points, and with process 0's
+numeric and string arrays on every output (before 2026-11-27 a process
+without points voted every array out). The feature mode runs
 twice: as by default (N_s = 4 makes no hole-filling move), and with Hole
 Fill Fraction 0.5 (two moves a round).
 
@@ -17,7 +19,7 @@ import os
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -38,6 +40,19 @@ points = vtkPoints()
 points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
 piece = vtkPolyData()
 piece.SetPoints(points)
+# A string array on process 0 alone (the others have no points): read at the
+# samples' representatives after the run, in two more exchanges, which the
+# processes without points serve too; every output has the array.
+names = vtkStringArray()
+names.SetName("Point name")
+for i in range(len(mine)):
+    names.InsertNextValue("point %d" % i)
+piece.GetPointData().AddArray(names)
+# And a numeric array, which travels with the points (a process without
+# points has no arrays: it must not vote an array of the others out).
+value = numpy_to_vtk(np.ascontiguousarray(mine[:, 0]), deep=1)
+value.SetName("Value")
+piece.GetPointData().AddArray(value)
 
 for mode, fraction in ((vtkASMSimplify.FEATURE_PRESERVING, None),
                        (vtkASMSimplify.FEATURE_PRESERVING, 0.5), (vtkASMSimplify.PAPER, None)):
@@ -57,5 +72,12 @@ for mode, fraction in ((vtkASMSimplify.FEATURE_PRESERVING, None),
     counts = vtk_to_numpy(counts)
     assert counts.sum() == NS, (mode, counts)
     assert (counts == 0).any(), ("some process must be left without points", mode, counts)
+    out_names = asm.GetOutput().GetPointData().GetAbstractArray("Point name")
+    assert out_names is not None and out_names.GetNumberOfValues() == local, (mode, rank)
+    out_value = asm.GetOutput().GetPointData().GetArray("Value")
+    assert out_value is not None and out_value.GetNumberOfTuples() == local, (mode, rank)
+    if local:
+        ids = vtk_to_numpy(asm.GetOutput().GetPointData().GetArray("vtkOriginalPointIds"))
+        assert [out_names.GetValue(i) for i in range(local)] == ["point %d" % i for i in ids]
     if rank == 0:
         print("mode %d: output points per process %s" % (mode, counts.astype(int).tolist()))
