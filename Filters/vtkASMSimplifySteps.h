@@ -33,7 +33,9 @@ namespace asmvtk
 /// every property of the filter, as it is set. What depends on the run
 /// (ErrorTolerance relative to the cloud's diagonal, CoordinateEpsilon, the
 /// distributed run's grid, budgets and hooks) is the caller's to add.
-asmcore::SimplifyParameters CoreParameters(vtkASMSimplify* filter, vtkIdType target);
+/// (Exported for the profiling harness, Benchmarks/Profile.)
+VTKASMFILTERS_EXPORT asmcore::SimplifyParameters CoreParameters(
+  vtkASMSimplify* filter, vtkIdType target);
 
 /// The input normals (3 components, at least `numberOfPoints` tuples) as the
 /// core reads them: float and double arrays in place, other types copied

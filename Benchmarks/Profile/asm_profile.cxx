@@ -8,7 +8,7 @@
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages] [--floor]
  *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
- *               [--set Name=value,...] [--error]
+ *               [--set Name=value,...] [--error] [--loops]
  *
  * --set sets more properties of vtkASMSimplify by name, as the benchmarks'
  * --asm does (asmbench::ApplyAsmSettings; e.g. --set FillHoles=0); it needs
@@ -27,6 +27,10 @@
  * output (with curvature when --curvature is given), as many runs, and
  * prints its median wall time and figures (to check that a change to the
  * measures leaves them unchanged).
+ * --loops times asmcore::Simplify's parallel loops one by one, by call site
+ * (the loop body's type), with each of --threads (default 1,2), and the time
+ * outside them: what limits the speed-up from a second thread (medians of
+ * --runs, wall ms; the filter's own parameters, --set included).
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
@@ -43,6 +47,7 @@
 #include "Core/Neighbors.h"
 #include "Core/Simplify.h"
 #include "vtkASMFilterUtilities.h"
+#include "vtkASMSimplifySteps.h"
 #ifdef ASM_PROFILE_SETTINGS
 #include "BenchmarkMethods.h"
 #endif
@@ -61,6 +66,7 @@
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <cxxabi.h>
 #include <malloc.h>
 #include <time.h>
 
@@ -71,9 +77,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 namespace
@@ -371,6 +380,140 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
   TimeCurvature(input, positions, normals);
 }
 
+// A loop body's call site, readable: its demangled type without argument
+// lists and template arguments ("AssignPasses::{lambda#1}").
+std::string CallSite(const std::type_info& type)
+{
+  int status = 0;
+  char* raw = abi::__cxa_demangle(type.name(), nullptr, nullptr, &status);
+  const std::string full = status == 0 && raw ? raw : type.name();
+  std::free(raw);
+  std::string out;
+  int parens = 0, angles = 0;
+  for (char ch : full)
+  {
+    if (ch == '(' && angles == 0)
+      ++parens;
+    else if (ch == ')' && angles == 0 && parens > 0)
+      --parens;
+    else if (ch == '<' && parens == 0)
+      ++angles;
+    else if (ch == '>' && parens == 0 && angles > 0)
+      --angles;
+    else if (parens == 0 && angles == 0)
+      out += ch;
+  }
+  for (const std::string drop : { "asmcore::", "(anonymous namespace)::", "std::function" })
+  {
+    for (std::size_t at; (at = out.find(drop)) != std::string::npos;)
+      out.erase(at, drop.size());
+  }
+  return out;
+}
+
+// asmcore::Simplify's parallel loops by call site, with each thread count:
+// the median over runs of each site's summed wall time, and of the time
+// outside the loops (what a second thread cannot share).
+void TimeLoops(vtkPolyData* input, double fraction, int mode, int runs,
+  const std::vector<long>& threadCounts, const std::function<bool(vtkASMSimplify*)>& settings)
+{
+  using namespace asmcore;
+  std::unique_ptr<double[]> copy;
+  PointIds idList;
+  IdView ids;
+  const Coordinates xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids);
+  vtkNew<vtkASMSimplify> filter;
+  if (mode >= 0)
+    filter->SetMode(mode);
+  settings(filter);
+  const auto target = static_cast<vtkIdType>(std::llround(fraction * ids.size()));
+  SimplifyParameters parameters = asmvtk::CoreParameters(filter, target);
+  if (filter->GetRelativeErrorTolerance() && filter->GetErrorTolerance() > 0.0)
+    parameters.ErrorTolerance *= ComputeBounds(xyz, ids).Diagonal();
+  parameters.CoordinateEpsilon = xyz.Floats ? 1.1920928955078125e-07 : 2.220446049250313e-16;
+
+  struct Site
+  {
+    std::string Name;
+    long Calls = 0;
+    std::map<long, std::vector<double>> Ms; // per thread count, per run
+  };
+  std::map<std::string, Site> sites; // by the body's mangled type name
+  std::map<long, std::vector<double>> totalMs, outsideMs;
+  for (int r = 0; r < runs; ++r)
+  {
+    for (long t : threadCounts)
+    {
+      vtkSMPTools::Initialize(static_cast<int>(t));
+      std::map<std::string, double> run; // this run's ms per site
+      int depth = 0;
+      Execution execution;
+      execution.For = [&](Index b, Index e, const std::function<void(Index, Index)>& body) {
+        const double start = Now();
+        ++depth;
+        if (t > 1)
+          vtkSMPTools::For(b, e, [&body](vtkIdType first, vtkIdType last) { body(first, last); });
+        else
+          Execution().Run(b, e, body); // (the filter's 1-thread way: the calling thread)
+        --depth;
+        if (depth == 0)
+        {
+          Site& site = sites[body.target_type().name()];
+          if (site.Name.empty())
+            site.Name = CallSite(body.target_type());
+          site.Calls += (r == 0 && t == threadCounts.front()) ? 1 : 0;
+          run[body.target_type().name()] += 1e3 * (Now() - start);
+        }
+      };
+      malloc_trim(0);
+      const double start = Now();
+      const SimplifyResult result = Simplify(xyz, ids, nullptr, parameters, execution);
+      const double total = 1e3 * (Now() - start);
+      double inside = 0.0;
+      for (auto& entry : sites)
+      {
+        const double ms = run.count(entry.first) ? run[entry.first] : 0.0;
+        entry.second.Ms[t].push_back(ms);
+        inside += ms;
+      }
+      totalMs[t].push_back(total);
+      outsideMs[t].push_back(total - inside);
+      if (result.Samples.size() != static_cast<std::size_t>(target))
+        std::printf("    (%zu samples, not %lld)\n", result.Samples.size(), (long long)target);
+    }
+  }
+  std::vector<const Site*> order;
+  for (const auto& entry : sites)
+    order.push_back(&entry.second);
+  const long one = threadCounts.front();
+  auto median = [](const std::map<long, std::vector<double>>& ms, long t) {
+    const auto it = ms.find(t);
+    return it == ms.end() || it->second.empty() ? 0.0 : Median(it->second);
+  };
+  std::sort(order.begin(), order.end(),
+    [&](const Site* a, const Site* b) { return median(a->Ms, one) > median(b->Ms, one); });
+  std::printf("  asmcore::Simplify's loops (%lld points, N_s %lld, wall ms, medians of %d runs):\n",
+    (long long)ids.size(), (long long)target, runs);
+  std::printf("    %6s", "calls");
+  for (long t : threadCounts)
+    std::printf(" %8ld thr", t);
+  std::printf("  %6s  call site\n", "x");
+  auto row = [&](const char* name, long calls, const std::map<long, std::vector<double>>& ms) {
+    std::printf("    %6ld", calls);
+    for (long t : threadCounts)
+      std::printf(" %12.1f", median(ms, t));
+    const double last = median(ms, threadCounts.back());
+    std::printf("  %6.2f  %s\n", last > 0.0 ? median(ms, one) / last : 0.0, name);
+  };
+  row("asmcore::Simplify, in all", 1, totalMs);
+  row("outside the loops", 0, outsideMs);
+  for (const Site* site : order)
+  {
+    if (median(site->Ms, one) >= 0.05)
+      row(site->Name.c_str(), site->Calls, site->Ms);
+  }
+}
+
 // The floor of a grid simplifier with a target count, on this input (its
 // own coordinates, floats in place, one thread, best of 3): the bounds, one
 // occupancy count (the least a search for the cell size can do), the grid
@@ -490,10 +633,11 @@ int main(int argc, char* argv[])
 {
   std::vector<long> sizes = { 1000000 };
   std::vector<long> threads = { 1 };
+  bool threadsGiven = false;
   int runs = 3;
   double fraction = 0.05;
   bool curvature = false, stages = false, coherent = false, arrays = false, floor = false;
-  bool error = false;
+  bool error = false, loops = false;
   const char* ply = nullptr;
   const char* dump = nullptr;
   int mode = -1;
@@ -505,7 +649,7 @@ int main(int argc, char* argv[])
     if (a == "--points")
       sizes = ParseList(next), ++i;
     else if (a == "--threads")
-      threads = ParseList(next), ++i;
+      threads = ParseList(next), threadsGiven = true, ++i;
     else if (a == "--runs")
       runs = std::atoi(next), ++i;
     else if (a == "--fraction")
@@ -530,6 +674,8 @@ int main(int argc, char* argv[])
       floor = true;
     else if (a == "--error")
       error = true;
+    else if (a == "--loops")
+      loops = true;
     else
     {
       std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
@@ -582,6 +728,12 @@ int main(int argc, char* argv[])
       TimeStages(input, fraction, mode);
     if (floor)
       TimeFloor(input, fraction);
+    if (loops)
+    {
+      TimeLoops(input, fraction, mode, runs, threadsGiven ? threads : std::vector<long>{ 1, 2 },
+        applySettings);
+      continue;
+    }
     for (long t : threads)
     {
       vtkSMPTools::Initialize(static_cast<int>(t));
