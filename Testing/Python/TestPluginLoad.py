@@ -5,6 +5,7 @@ Set-up (plugin and data paths): asm_test_setup.py.
 import os
 
 from paraview import servermanager
+from paraview.modules.vtkRemotingServerManager import vtkSMOrderedPropertyIterator
 from paraview.simple import *  # noqa: F401,F403
 
 from asm_test_setup import load_asm_plugin
@@ -76,6 +77,35 @@ for name in listed:
     visibility = asm.GetProperty(name).SMProperty.GetPanelVisibility()
     assert visibility == ("default" if name in everyday else "advanced"), (name, visibility)
 print("properties, defaults and documentation OK")
+
+# The advanced properties in labelled sections of the panel, each in one, and
+# each section's properties next to each other in the panel's order.
+sections = {}
+proxy = asm.SMProxy
+for g in range(proxy.GetNumberOfPropertyGroups()):
+    group = proxy.GetPropertyGroup(g)
+    sections[group.GetXMLLabel()] = [group.GetPropertyName(i) for i in range(group.GetNumberOfProperties())]
+assert list(sections) == ["Grid", "Key Points", "Budget", "Clusters and Holes", "Curvature",
+                          "Output and Parallel Runs"], list(sections)
+grouped = [name for names in sections.values() for name in names]
+assert sorted(grouped) == sorted(listed - everyday | {"ErrorTolerance"}), (
+    set(grouped) ^ (listed - everyday | {"ErrorTolerance"}))
+assert len(grouped) == len(set(grouped)), "a property in two sections"
+xml_order = []  # the panel's order: the XML's
+iterator = vtkSMOrderedPropertyIterator()
+iterator.SetProxy(proxy)
+iterator.Begin()
+while not iterator.IsAtEnd():
+    xml_order.append(iterator.GetKey())
+    iterator.Next()
+panel_order = [name for name in xml_order if name in grouped]
+assert panel_order == grouped, "sections not contiguous in the panel: %r" % panel_order
+assert xml_order[:5] == ["Input", "Mode", "TargetMode", "OutputFraction", "NumberOfOutputPoints"], (
+    xml_order[:5])
+for name in sections["Clusters and Holes"][:3]:
+    assert asm.GetProperty(name).SMProperty.GetDocumentation().GetDescription().strip().startswith(
+        "Feature Preserving"), name
+print("panel sections OK")
 
 # Menu entry and display hints.
 assert asm.SMProxy.GetXMLLabel() == "ASM Simplify", asm.SMProxy.GetXMLLabel()
