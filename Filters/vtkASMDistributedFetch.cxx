@@ -292,18 +292,21 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   // 1. Requests: the representatives' ids, to the processes holding them,
   // in sample order (samplesFrom[r]: the samples whose values r sends).
-  std::vector<std::vector<long long>> asked(static_cast<std::size_t>(processes));
   std::vector<std::vector<vtkIdType>> samplesFrom(static_cast<std::size_t>(processes));
   for (vtkIdType s = 0; s < count; ++s)
   {
-    const Index r = result.Samples[s].Representative;
-    asked[cloud.SourceRank[r]].push_back(cloud.SourceId[r]);
-    samplesFrom[cloud.SourceRank[r]].push_back(s);
+    samplesFrom[cloud.SourceRank[result.Samples[s].Representative]].push_back(s);
   }
   std::vector<asmcore::PointArray<long long>> send(static_cast<std::size_t>(processes));
+  std::vector<long long> asked;
   for (int r = 0; r < processes; ++r)
   {
-    AppendMessage(send[r], asked[r].data(), asked[r].size() * sizeof(long long));
+    asked.clear();
+    for (vtkIdType s : samplesFrom[r])
+    {
+      asked.push_back(cloud.SourceId[result.Samples[s].Representative]);
+    }
+    AppendMessage(send[r], asked.data(), asked.size() * sizeof(long long));
   }
   const asmcore::PointArray<long long> requests = comm.Exchange(send);
   std::vector<std::pair<const char*, std::size_t>> messages;
