@@ -69,8 +69,8 @@ Method MakeCgalGrid(vtkPolyData* input, vtkIdType target)
 {
   const auto points = ToCgal(input);
   auto run = [points](double epsilon, bool keep) {
-    return RunCgal(*points, keep,
-      [epsilon](Points& p) { return CGAL::grid_simplify_point_set(p, epsilon); });
+    return RunCgal(
+      *points, keep, [epsilon](Points& p) { return CGAL::grid_simplify_point_set(p, epsilon); });
   };
   const double diagonal = input->GetLength(); // bounding-box diagonal
   vtkIdType found = 0;

@@ -69,8 +69,8 @@ std::uint64_t Mix(std::uint64_t z)
 
 /// Fills n points: sample(rng, p) writes point p; chunks of 65536 points,
 /// each with its own seed, generated in parallel (deterministic).
-vtkSmartPointer<vtkPolyData> Generate(std::int64_t n, std::uint64_t seed,
-  const std::function<void(Random&, float*)>& sample)
+vtkSmartPointer<vtkPolyData> Generate(
+  std::int64_t n, std::uint64_t seed, const std::function<void(Random&, float*)>& sample)
 {
   constexpr std::int64_t chunk = 65536;
   vtkNew<vtkFloatArray> coords;

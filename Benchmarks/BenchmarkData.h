@@ -33,8 +33,8 @@ namespace asmbench
 struct Input
 {
   std::string Name;
-  vtkSmartPointer<vtkPolyData> Data;  ///< points only (no cells, no arrays) for synthetic clouds
-  std::vector<double> Features;       ///< x y z of each known feature point (may be empty)
+  vtkSmartPointer<vtkPolyData> Data; ///< points only (no cells, no arrays) for synthetic clouds
+  std::vector<double> Features;      ///< x y z of each known feature point (may be empty)
   std::int64_t NumberOfPoints() const { return this->Data ? this->Data->GetNumberOfPoints() : 0; }
 };
 

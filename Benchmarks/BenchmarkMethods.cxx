@@ -11,13 +11,13 @@
 #include "vtkVoxelGrid.h"
 
 #include <array>
-#include <exception>
 #include <chrono>
-#include <cstdlib>
-#include <iostream>
-#include <map>
 #include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
 #include <limits>
+#include <map>
 #include <type_traits>
 #include <utility>
 
@@ -26,7 +26,8 @@ namespace asmbench
 bool DivisionsFit(const std::array<int, 3>& d)
 {
   return d[0] >= 1 && d[1] >= 1 && d[2] >= 1 &&
-    static_cast<double>(d[0]) * static_cast<double>(d[1]) * static_cast<double>(d[2]) <= MaxVoxelBins;
+    static_cast<double>(d[0]) * static_cast<double>(d[1]) * static_cast<double>(d[2]) <=
+    MaxVoxelBins;
 }
 
 std::array<int, 3> VoxelDivisions(const double bounds[6], double s)
@@ -34,12 +35,15 @@ std::array<int, 3> VoxelDivisions(const double bounds[6], double s)
   double range[3], longest = 0.0;
   for (int k = 0; k < 3; ++k)
   {
-    range[k] = std::isfinite(bounds[2 * k + 1] - bounds[2 * k]) ? std::max(0.0, bounds[2 * k + 1] - bounds[2 * k]) : 0.0;
+    range[k] = std::isfinite(bounds[2 * k + 1] - bounds[2 * k])
+      ? std::max(0.0, bounds[2 * k + 1] - bounds[2 * k])
+      : 0.0;
     longest = std::max(longest, range[k]);
   }
   if (!(s > 0.0) || !std::isfinite(s))
   {
-    s = std::isinf(s) ? longest + 1.0 : longest / std::cbrt(MaxVoxelBins); // +inf: one cell; NaN, <= 0: fine
+    s = std::isinf(s) ? longest + 1.0
+                      : longest / std::cbrt(MaxVoxelBins); // +inf: one cell; NaN, <= 0: fine
   }
   s = std::max(s, 1e-12 * std::max(longest, 1e-300));
   std::array<int, 3> d = { 1, 1, 1 };
@@ -127,6 +131,7 @@ RunResult RunFilter(vtkAlgorithm* filter, bool keepPoints)
 
 const std::vector<AsmConfig>& AsmConfigurations()
 {
+  // clang-format off
   static const std::vector<AsmConfig> table = {
     // name                 mode                         curvature
     { "ASM default",        AsmMode::FeaturePreserving, false },
@@ -134,6 +139,7 @@ const std::vector<AsmConfig>& AsmConfigurations()
     { "ASM paper",          AsmMode::Paper,             false },
     { "ASM paper +curv",    AsmMode::Paper,             true },
   };
+  // clang-format on
   return table;
 }
 
@@ -144,6 +150,7 @@ using Setter = bool (*)(vtkASMSimplify* filter, double value, double& held);
 // name -> sets the property to the value; if the property holds another
 // value then (clamped, rounded), puts the previous one back and returns
 // false, with the value it would hold in `held`.
+// clang-format off
 #define ASM_SETTING(name)                                                                          \
   {                                                                                                \
     #name, [](vtkASMSimplify* f, double v, double& held) {                                         \
@@ -174,6 +181,7 @@ const std::map<std::string, Setter>& AsmSetters()
     ASM_SETTING(RandomSeed), ASM_SETTING(SnapToInputPoints), ASM_SETTING(GenerateCurvature),
     ASM_SETTING(CurvatureNeighbors), ASM_SETTING(MinimumPointsForThreads),
   };
+  // clang-format on
   return setters;
 }
 #undef ASM_SETTING
@@ -242,7 +250,8 @@ bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& er
     error = "\"" + spec + "\" is not NAME:SETTINGS";
     return false;
   }
-  config = AsmConfig{ spec.substr(0, colon), AsmMode::FeaturePreserving, false, spec.substr(colon + 1), true };
+  config = AsmConfig{ spec.substr(0, colon), AsmMode::FeaturePreserving, false,
+    spec.substr(colon + 1), true };
   for (const AsmConfig& standard : AsmConfigurations())
   {
     if (standard.Name == config.Name)
@@ -256,7 +265,8 @@ bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& er
   {
     return false;
   }
-  config.Mode = probe->GetMode() == vtkASMSimplify::PAPER ? AsmMode::Paper : AsmMode::FeaturePreserving;
+  config.Mode =
+    probe->GetMode() == vtkASMSimplify::PAPER ? AsmMode::Paper : AsmMode::FeaturePreserving;
   return true;
 }
 
@@ -292,9 +302,8 @@ double Now()
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target,
-  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found,
-  int probes)
+double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target, double initial,
+  double exponent, double tolerance, int maxEvaluations, vtkIdType& found, int probes)
 {
   const double slack = std::max(0.5, tolerance * static_cast<double>(target));
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
@@ -303,7 +312,8 @@ double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType targ
   for (int i = 0; i < maxEvaluations; ++i)
   {
     const vtkIdType c = count(s);
-    if (found < 0 || std::abs(static_cast<double>(c - target)) < std::abs(static_cast<double>(found - target)))
+    if (found < 0 ||
+      std::abs(static_cast<double>(c - target)) < std::abs(static_cast<double>(found - target)))
     {
       found = c;
       best = s;
@@ -313,8 +323,9 @@ double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType targ
       break;
     }
     (c > target ? lo : hi) = s;
-    double next = c > 0 ? s * std::pow(static_cast<double>(c) / static_cast<double>(target), 1.0 / exponent)
-                        : s / 4.0;
+    double next = c > 0
+      ? s * std::pow(static_cast<double>(c) / static_cast<double>(target), 1.0 / exponent)
+      : s / 4.0;
     if (lo > 0.0 && std::isfinite(hi))
     {
       if (hi / lo < 1.0 + 1e-12)
@@ -397,13 +408,14 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
     }
     catch (const std::exception& e)
     {
-      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << " failed (" << e.what()
-                << "); configuration skipped\n";
+      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << " failed ("
+                << e.what() << "); configuration skipped\n";
       counts[d] = 0;
     }
     if (std::getenv("ASM_BENCHMARK_DEBUG"))
     {
-      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << ": " << counts[d] << "\n";
+      std::cerr << "vtkVoxelGrid " << d[0] << " x " << d[1] << " x " << d[2] << ": " << counts[d]
+                << "\n";
     }
     return counts[d];
   };
@@ -447,8 +459,8 @@ Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target)
   m.Name = "vtkVoxelGrid";
   if (!DivisionsFit(best) || count(best) <= 0)
   {
-    std::cerr << "vtkVoxelGrid: no configuration within " << MaxVoxelBins << " bins reaches N_s = " << target
-              << "; skipped\n";
+    std::cerr << "vtkVoxelGrid: no configuration within " << MaxVoxelBins
+              << " bins reaches N_s = " << target << "; skipped\n";
     return m; // empty Run: skipped
   }
   m.Note = "divisions " + std::to_string(best[0]) + " x " + std::to_string(best[1]) + " x " +

@@ -106,10 +106,12 @@ constexpr double MaxVoxelBins = 268435456.0;
 bool DivisionsFit(const std::array<int, 3>& d);
 /// Divisions of the box `bounds` (xmin xmax ymin ymax zmin zmax) for a cubic
 /// cell of edge s: round(range / s) per axis, each in [1, 2^20], the cell
-/// grown until the product fits MaxVoxelBins; s not finite or <= 0 gives the finest / coarsest grid.
+/// grown until the product fits MaxVoxelBins; s not finite or <= 0 gives the finest / coarsest
+/// grid.
 std::array<int, 3> VoxelDivisions(const double bounds[6], double s);
 
-/// Leaf size searched with the real filter (an empty Run when no grid within MaxVoxelBins works) so that the count is within 1 % of target.
+/// Leaf size searched with the real filter (an empty Run when no grid within MaxVoxelBins works) so
+/// that the count is within 1 % of target.
 Method MakeVoxelGrid(vtkPolyData* input, vtkIdType target);
 /// randomModeType: 1 random sampling, 2 spatially stratified (vtkMaskPoints).
 Method MakeMaskPoints(vtkPolyData* input, vtkIdType target, int randomModeType);
@@ -125,9 +127,8 @@ Method MakeCgalHierarchy(vtkPolyData* input, vtkIdType target);
 /// s found in at most maxEvaluations calls (and its count in `found`), then,
 /// if still outside the tolerance, up to `probes` more calls at s * (1 +/-
 /// 0.25 % k) around the best (grid counts jump, and are not monotone).
-double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target,
-  double initial, double exponent, double tolerance, int maxEvaluations, vtkIdType& found,
-  int probes = 0);
+double SearchScale(const std::function<vtkIdType(double)>& count, vtkIdType target, double initial,
+  double exponent, double tolerance, int maxEvaluations, vtkIdType& found, int probes = 0);
 
 /// Wall-clock seconds since an arbitrary origin.
 double Now();

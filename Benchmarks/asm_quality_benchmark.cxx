@@ -29,8 +29,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <exception>
 #include <ctime>
+#include <exception>
 #include <iostream>
 #include <map>
 #include <set>
@@ -118,16 +118,18 @@ struct Case
 /// peers and the other ASM modes, except those in `ignore`) on p2plane mean
 /// and on NN RMS on >= 80 % of the inputs; largest hole <= vtkVoxelGrid's on
 /// >= 80 %; lowest tip error (mean) on every synthetic shape.
-void PrintTargets(const std::vector<Case>& cases, const std::vector<double>& fractions, const std::string& mode,
-  const std::set<std::string>& ignore)
+void PrintTargets(const std::vector<Case>& cases, const std::vector<double>& fractions,
+  const std::string& mode, const std::set<std::string>& ignore)
 {
-  std::cout << "\n## Targets (issue 7) for " << mode << ", per fraction (best = <= every other method)\n\n";
+  std::cout << "\n## Targets (issue 7) for " << mode
+            << ", per fraction (best = <= every other method)\n\n";
   auto verdict = [](int wins, int total, double share) {
     return total == 0 ? "n/a " : (wins >= share * total - 1e-9 ? "PASS" : "FAIL");
   };
   for (double fraction : fractions)
   {
-    int total = 0, planeWins = 0, nnWins = 0, holeCases = 0, holeWins = 0, tipCases = 0, tipWins = 0;
+    int total = 0, planeWins = 0, nnWins = 0, holeCases = 0, holeWins = 0, tipCases = 0,
+        tipWins = 0;
     std::string planeLost, nnLost, holeLost, tipLost;
     for (const Case& c : cases)
     {
@@ -180,8 +182,8 @@ void PrintTargets(const std::vector<Case>& cases, const std::vector<double>& fra
     }
     const std::string at = "N_s = " + Format(100.0 * fraction, 3) + " %: ";
     auto line = [&](const char* what, int wins, int cases, double share, const std::string& lost) {
-      std::cout << verdict(wins, cases, share) << "  " << at << what << " " << wins << "/" << cases << " inputs"
-                << (lost.empty() ? std::string() : " (not on:" + lost + ")") << "\n";
+      std::cout << verdict(wins, cases, share) << "  " << at << what << " " << wins << "/" << cases
+                << " inputs" << (lost.empty() ? std::string() : " (not on:" + lost + ")") << "\n";
     };
     line("best p2plane mean on >= 80 % of the inputs:", planeWins, total, 0.8, planeLost);
     line("best NN RMS on >= 80 % of the inputs:", nnWins, total, 0.8, nnLost);
@@ -192,11 +194,12 @@ void PrintTargets(const std::vector<Case>& cases, const std::vector<double>& fra
 
 void Usage()
 {
-  std::cout << "usage: asm_quality_benchmark [--fractions 0.01,0.05,0.2] [--inputs spec,...]\n"
-               "                             [--quick] [--markdown] [--asm NAME:SETTINGS ...] [input ...]\n"
-               "input: a .ply path, or spikes:100k, bracket:100k, terrain:100k, bumps:1M\n"
-               "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
-               "       (the default mode with those properties; Mode=paper for the paper mode)\n";
+  std::cout
+    << "usage: asm_quality_benchmark [--fractions 0.01,0.05,0.2] [--inputs spec,...]\n"
+       "                             [--quick] [--markdown] [--asm NAME:SETTINGS ...] [input ...]\n"
+       "input: a .ply path, or spikes:100k, bracket:100k, terrain:100k, bumps:1M\n"
+       "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
+       "       (the default mode with those properties; Mode=paper for the paper mode)\n";
 }
 } // namespace
 
@@ -280,7 +283,8 @@ int main(int argc, char* argv[])
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
-  std::cout << "# asm_quality_benchmark, " << date << ", " << vtkSMPTools::GetEstimatedNumberOfThreads()
+  std::cout << "# asm_quality_benchmark, " << date << ", "
+            << vtkSMPTools::GetEstimatedNumberOfThreads()
             << " thread(s); CGAL peers: " << (HaveCGAL() ? "yes" : "no (not built)")
             << "; ASM modes: " << configs.size() << "\n"
             << "# distances in per mille of the input's bounding-box diagonal; p2plane: original"
@@ -311,7 +315,8 @@ int main(int argc, char* argv[])
     const Reference reference(Coordinates(input.Data), input.Features);
     for (double fraction : fractions)
     {
-      const vtkIdType target = std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
+      const vtkIdType target =
+        std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
       std::vector<Method> methods;
       for (const AsmConfig& c : configs)
       {
@@ -355,7 +360,8 @@ int main(int argc, char* argv[])
       for (const Row& row : rows)
       {
         // "*": the method could not be driven within 1 % of N_s.
-        const bool off = std::abs(static_cast<double>(row.Count - target)) > std::max(0.5, 0.01 * target);
+        const bool off =
+          std::abs(static_cast<double>(row.Count - target)) > std::max(0.5, 0.01 * target);
         std::vector<std::string> cells = { row.Method, std::to_string(row.Count) + (off ? "*" : ""),
           Format(row.Seconds, 3) };
         for (const Measure& measure : Measures())
@@ -381,7 +387,8 @@ int main(int argc, char* argv[])
         }
         Tally& tally = tallies[row.Method];
         std::vector<std::string> cells = { row.Method + " / best peer", "", "" };
-        std::vector<std::string> compact = { row.Method, input.Name, Format(100.0 * fraction, 3) + " %" };
+        std::vector<std::string> compact = { row.Method, input.Name,
+          Format(100.0 * fraction, 3) + " %" };
         for (const Measure& measure : Measures())
         {
           if (!tips && measure.Tips)
@@ -410,7 +417,8 @@ int main(int argc, char* argv[])
           tally.HoleNotWorseThanVoxel += row.Q.Hole <= voxel->Q.Hole ? 1 : 0;
           tally.HoleCases += 1;
         }
-        compact.push_back(voxel && voxel->Q.Hole > 0.0 ? Fixed(row.Q.Hole / voxel->Q.Hole, 2) : "-");
+        compact.push_back(
+          voxel && voxel->Q.Hole > 0.0 ? Fixed(row.Q.Hole / voxel->Q.Hole, 2) : "-");
         ratios.Add(compact);
         table.Add(cells);
       }
@@ -447,9 +455,11 @@ int main(int argc, char* argv[])
         continue;
       }
       cells.push_back("x" + Fixed(Median(ratios->second), 2) + " (" +
-        std::to_string(tally.Wins.at(measure.Name)) + "/" + std::to_string(tally.Cases.at(measure.Name)) + ")");
+        std::to_string(tally.Wins.at(measure.Name)) + "/" +
+        std::to_string(tally.Cases.at(measure.Name)) + ")");
     }
-    cells.push_back(std::to_string(tally.HoleNotWorseThanVoxel) + "/" + std::to_string(tally.HoleCases));
+    cells.push_back(
+      std::to_string(tally.HoleNotWorseThanVoxel) + "/" + std::to_string(tally.HoleCases));
     summary.Add(cells);
   }
   summary.Print(std::cout, markdown);

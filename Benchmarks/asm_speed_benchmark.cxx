@@ -39,8 +39,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <exception>
 #include <ctime>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -51,14 +51,17 @@ namespace
 {
 void Usage()
 {
-  std::cout << "usage: asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]\n"
-               "                           [--fractions 0.05,0.01,0.2] [--inputs spec,...]\n"
-               "                           [--no-memory] [--markdown] [--asm NAME:SETTINGS ...] [input ...]\n"
-               "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n"
-               "--readme: the README's run (~15 min on 2 idle cores): bunny, bunny-scans, bumps 100k..14M,\n"
-               "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
-               "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
-               "       (the default mode with those properties; Mode=paper for the paper mode)\n";
+  std::cout
+    << "usage: asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]\n"
+       "                           [--fractions 0.05,0.01,0.2] [--inputs spec,...]\n"
+       "                           [--no-memory] [--markdown] [--asm NAME:SETTINGS ...] [input "
+       "...]\n"
+       "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n"
+       "--readme: the README's run (~15 min on 2 idle cores): bunny, bunny-scans, bumps "
+       "100k..14M,\n"
+       "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
+       "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
+       "       (the default mode with those properties; Mode=paper for the paper mode)\n";
 }
 
 /// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
@@ -168,7 +171,8 @@ const Record* Find(const std::vector<Record>& records, const std::string& input,
 {
   for (const Record& r : records)
   {
-    if (r.Input == input && std::abs(r.Fraction - fraction) < 1e-9 && r.Method == method && r.Threads == threads)
+    if (r.Input == input && std::abs(r.Fraction - fraction) < 1e-9 && r.Method == method &&
+      r.Threads == threads)
     {
       return &r;
     }
@@ -226,11 +230,12 @@ void PrintTargets(const std::vector<Record>& records, const std::vector<int>& th
           known = true;
           pass = pass && speedup >= 1.7;
         }
-        detail += std::string(" ") + mode + " " + input + " " + (std::isfinite(speedup) ? "x" + Fixed(speedup, 2) : "-") + ";";
+        detail += std::string(" ") + mode + " " + input + " " +
+          (std::isfinite(speedup) ? "x" + Fixed(speedup, 2) : "-") + ";";
       }
     }
-    std::cout << Verdict(known, pass) << "  >= 1.7x from 1 to 2 threads, both modes, 4M and 14M:" << detail
-              << "\n";
+    std::cout << Verdict(known, pass)
+              << "  >= 1.7x from 1 to 2 threads, both modes, 4M and 14M:" << detail << "\n";
   }
   {
     // Both modes faster than vtkVoxelGrid on every input, fraction and thread count.
@@ -258,8 +263,9 @@ void PrintTargets(const std::vector<Record>& records, const std::vector<int>& th
           std::to_string(r.Threads) + " thread(s)";
       }
     }
-    std::cout << Verdict(cases > 0, wins == cases) << "  both modes faster than vtkVoxelGrid on every input: "
-              << wins << "/" << cases << " cases, slowest x" << Fixed(worst, 2) << " (" << where << ")\n";
+    std::cout << Verdict(cases > 0, wins == cases)
+              << "  both modes faster than vtkVoxelGrid on every input: " << wins << "/" << cases
+              << " cases, slowest x" << Fixed(worst, 2) << " (" << where << ")\n";
   }
   for (const char* mode : modes)
   {
@@ -281,8 +287,8 @@ void PrintTargets(const std::vector<Record>& records, const std::vector<int>& th
     }
     const double spread = sizes > 1 ? 100.0 * (hi / lo - 1.0) : NAN;
     std::cout << Verdict(sizes > 1, spread < 25.0) << "  " << mode
-              << ": time per point within 25 % from 100k to 14M, 1 thread: spread " << Fixed(spread, 0) << " %;"
-              << detail << "\n";
+              << ": time per point within 25 % from 100k to 14M, 1 thread: spread "
+              << Fixed(spread, 0) << " %;" << detail << "\n";
   }
   {
     double worst = 0.0;
@@ -300,7 +306,8 @@ void PrintTargets(const std::vector<Record>& records, const std::vector<int>& th
         }
       }
     }
-    std::cout << Verdict(known, worst <= 48.0) << "  peak memory beyond input and output <= 48 B/pt, both modes:"
+    std::cout << Verdict(known, worst <= 48.0)
+              << "  peak memory beyond input and output <= 48 B/pt, both modes:"
               << " largest " << Fixed(worst, 1) << " B/pt (" << where << ")\n";
   }
   if (std::find(threads.begin(), threads.end(), 1) == threads.end() ||
@@ -431,17 +438,19 @@ int main(int argc, char* argv[])
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
   const double started = Now();
-  std::cout << "# asm_speed_benchmark" << (readme ? " --readme" : "") << ", " << date << ", median of "
+  std::cout << "# asm_speed_benchmark" << (readme ? " --readme" : "") << ", " << date
+            << ", median of "
             << (readme ? std::string("5 run(s)") : std::to_string(runs) + " run(s)")
             << ", vtkSMPTools STDThread backend, load average " << LoadAverage() << "\n"
             << "# Mpt/s: million input points per second; x peer: peer time / ASM time (> 1: ASM"
                " faster); x thr: time with the first thread count / this row's; mem: peak memory"
                " beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
 
-  const std::vector<std::string> columns = { "input", "N", "N_s", "method", "threads", "median s", "Mpt/s",
-    "x vtkVoxelGrid", "x vtkMaskPoints", "x thr", "mem B/pt" };
+  const std::vector<std::string> columns = { "input", "N", "N_s", "method", "threads", "median s",
+    "Mpt/s", "x vtkVoxelGrid", "x vtkMaskPoints", "x thr", "mem B/pt" };
   // Summary data: seconds per input point, by ASM configuration, fraction, input, threads.
-  std::map<std::string, std::map<std::string, std::map<int, double>>> perPoint; // key: config@fraction
+  std::map<std::string, std::map<std::string, std::map<int, double>>>
+    perPoint; // key: config@fraction
   std::vector<std::string> order;
   std::vector<Record> records;
   for (const Job& job : jobs)
@@ -456,7 +465,8 @@ int main(int argc, char* argv[])
     const vtkIdType n = input.NumberOfPoints();
     for (double fraction : job.Fractions)
     {
-      const vtkIdType target = std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
+      const vtkIdType target =
+        std::max<vtkIdType>(1, std::llround(fraction * static_cast<double>(n)));
       SetThreads(threads.back());
       std::vector<Method> methods;
       for (const AsmConfig& c : configs)
@@ -496,7 +506,8 @@ int main(int argc, char* argv[])
             if (timings.count(m.Name))
             {
               const double bytes = PeakExtraBytes([&m]() { return m.Run(false).OutputBytes; });
-              memoryPerPoint[m.Name] = bytes >= 0.0 ? std::max(0.0, bytes) / static_cast<double>(n) : NAN;
+              memoryPerPoint[m.Name] =
+                bytes >= 0.0 ? std::max(0.0, bytes) / static_cast<double>(n) : NAN;
             }
           }
         }
@@ -509,7 +520,9 @@ int main(int argc, char* argv[])
           const Timing& timing = timings[m.Name];
           auto ratio = [&](const char* peer) {
             const auto it = timings.find(peer);
-            return !m.IsASM ? std::string() : it == timings.end() ? "-" : "x" + Format(it->second.Median / timing.Median, 3);
+            return !m.IsASM         ? std::string()
+              : it == timings.end() ? "-"
+                                    : "x" + Format(it->second.Median / timing.Median, 3);
           };
           if (t == threads.front())
           {
@@ -520,11 +533,13 @@ int main(int argc, char* argv[])
           // "*": the method could not be driven within 1 % of N_s.
           const bool off = std::abs(static_cast<double>(timing.Count - target)) >
             std::max(0.5, 0.01 * static_cast<double>(target));
-          table.Add({ input.Name, std::to_string(n), std::to_string(timing.Count) + (off ? "*" : ""), m.Name,
-            std::to_string(t), Format(timing.Median, 3),
-            Fixed(static_cast<double>(n) / timing.Median / 1e6, 1), ratio("vtkVoxelGrid"),
-            ratio("vtkMaskPoints random"),
-            t != threads.front() && firstMedian.count(m.Name) ? "x" + Fixed(firstMedian[m.Name] / timing.Median, 2) : "",
+          table.Add({ input.Name, std::to_string(n),
+            std::to_string(timing.Count) + (off ? "*" : ""), m.Name, std::to_string(t),
+            Format(timing.Median, 3), Fixed(static_cast<double>(n) / timing.Median / 1e6, 1),
+            ratio("vtkVoxelGrid"), ratio("vtkMaskPoints random"),
+            t != threads.front() && firstMedian.count(m.Name)
+              ? "x" + Fixed(firstMedian[m.Name] / timing.Median, 2)
+              : "",
             hasMemory ? Fixed(mem->second, 1) : "" });
           records.push_back({ input.Name, n, fraction, m.Name, m.IsASM, t, timing.Median,
             hasMemory ? mem->second : NAN });
@@ -544,8 +559,9 @@ int main(int argc, char* argv[])
   // Summary: nanoseconds per input point on each input (first thread count),
   // speed-up from the first to the last thread count, and the spread of the
   // time per point over the inputs.
-  std::cout << "## Summary: ns per input point with " << threads.front() << " thread(s) (speed-up with "
-            << threads.back() << "); spread = max/min - 1 of ns per point over the synthetic bumps-* inputs\n\n";
+  std::cout << "## Summary: ns per input point with " << threads.front()
+            << " thread(s) (speed-up with " << threads.back()
+            << "); spread = max/min - 1 of ns per point over the synthetic bumps-* inputs\n\n";
   std::vector<std::string> header = { "ASM configuration" };
   header.insert(header.end(), order.begin(), order.end());
   header.push_back("spread");
@@ -580,7 +596,7 @@ int main(int argc, char* argv[])
   }
   summary.Print(std::cout, markdown);
   PrintTargets(records, threads);
-  std::cout << "\n# load average at the end: " << LoadAverage() << "; wall time " << Fixed(Now() - started, 0)
-            << " s\n";
+  std::cout << "\n# load average at the end: " << LoadAverage() << "; wall time "
+            << Fixed(Now() - started, 0) << " s\n";
   return 0;
 }

@@ -7,8 +7,8 @@
 
 #include "Core/Budget.h"
 #include "Core/CanonicalOrder.h"
-#include "Core/CellSize.h"
 #include "Core/CellFrame.h"
+#include "Core/CellSize.h"
 #include "Core/Grid.h"
 
 #include "vtkCommunicator.h"
@@ -40,8 +40,8 @@ std::uint64_t Mix(std::uint64_t key)
 } // namespace
 
 //------------------------------------------------------------------------------
-Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const asmcore::GridSpec& spec, const asmcore::Execution& execution)
+Index CountOccupiedCells(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::GridSpec& spec, const asmcore::Execution& execution)
 {
   if (comm.Size() == 1)
   {
@@ -65,7 +65,8 @@ asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcor
   const double* xyz, asmcore::IdView ids, const asmcore::Execution& execution)
 {
   return asmcore::MakeCellPartition(
-    grid, comm.Size(), xyz, ids, [&comm](std::vector<long long>& counts) { comm.Sum(counts); }, execution);
+    grid, comm.Size(), xyz, ids, [&comm](std::vector<long long>& counts) { comm.Sum(counts); },
+    execution);
 }
 
 //------------------------------------------------------------------------------
@@ -119,20 +120,23 @@ std::vector<Index> GlobalBudgets(const Communication& comm, const std::vector<st
     offsets[r] = offsets[r - 1] + lengths[r - 1];
   }
   const vtkIdType total = offsets.back() + lengths.back();
-  std::vector<double> all(static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total, 1) : 1));
+  std::vector<double> all(
+    static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total, 1) : 1));
   double dummy = 0.0;
   comm.Controller()->GatherV(mine.empty() ? &dummy : mine.data(), all.data(),
     static_cast<vtkIdType>(mine.size()), lengths.data(), offsets.data(), 0);
 
   // Process 0: every cell, in key order, as the serial code sees them.
-  std::vector<double> budgets(static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total / W, 1) : 1));
+  std::vector<double> budgets(
+    static_cast<std::size_t>(comm.Rank() == 0 ? std::max<vtkIdType>(total / W, 1) : 1));
   if (comm.Rank() == 0)
   {
     const std::size_t cells = static_cast<std::size_t>(total / W);
     std::vector<std::size_t> order(cells);
     std::iota(order.begin(), order.end(), std::size_t(0));
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return all[W * a] < all[W * b] || (all[W * a] == all[W * b] && all[W * a + 1] < all[W * b + 1]);
+      return all[W * a] < all[W * b] ||
+        (all[W * a] == all[W * b] && all[W * a + 1] < all[W * b + 1]);
     });
     std::vector<Index> cap(cells);
     std::vector<double> var(cells);
@@ -174,7 +178,8 @@ Index SimplifyShare::BudgetOf(std::uint64_t key) const
 }
 
 SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, const double* xyz,
-  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters, const asmcore::Execution& execution)
+  asmcore::IdView ids, const asmcore::SimplifyParameters& parameters,
+  const asmcore::Execution& execution)
 {
   SimplifyShare share;
   const Index total = comm.Sum(static_cast<Index>(ids.size()));
@@ -202,19 +207,21 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
       asmcore::SamplesPerCellOf(parameters);
     // As the serial search: first on the subsample picked by coordinates
     // (the same points however the cloud is split), then on all points.
-    const asmcore::PointArray<double> subset = asmcore::CellSizeSubsample(
-      xyz, ids, static_cast<double>(total), targetCells, execution);
+    const asmcore::PointArray<double> subset =
+      asmcore::CellSizeSubsample(xyz, ids, static_cast<double>(total), targetCells, execution);
     double start = 0.0;
     if (comm.Sum(static_cast<Index>(subset.size())) > 0)
     {
       std::vector<Index> subsetIds(subset.size() / 3);
       std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
-      start = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
-        [&](const asmcore::GridSpec& spec) {
-          return static_cast<double>(CountOccupiedCells(comm, subset.data(), subsetIds, spec, execution));
+      start = asmcore::AutomaticCellSize(
+        bounds, targetCells, total == 0, [&](const asmcore::GridSpec& spec) {
+          return static_cast<double>(
+            CountOccupiedCells(comm, subset.data(), subsetIds, spec, execution));
         });
     }
-    cellSize = asmcore::AutomaticCellSize(bounds, targetCells, total == 0,
+    cellSize = asmcore::AutomaticCellSize(
+      bounds, targetCells, total == 0,
       [&](const asmcore::GridSpec& spec) {
         return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec, execution));
       },
@@ -224,7 +231,8 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
 
   // 2. Owners, redistribution with the halo, canonical order.
   share.Partition = MakeCellPartition(comm, share.Grid, xyz, ids, execution);
-  share.Cloud = Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters), execution);
+  share.Cloud =
+    Redistribute(comm, input, xyz, ids, share.Partition, HaloRingsFor(parameters), execution);
 
   // 3. The owned cells (consecutive runs of a key), and one global budget.
   const LocalCloud& cloud = share.Cloud;
@@ -278,8 +286,8 @@ void RunOnShare(const SimplifyShare& share, asmcore::SimplifyParameters& paramet
   parameters.CloudCentroid = share.Centroid;
 }
 
-void CombineFigures(const Communication& comm, const SimplifyShare& share,
-  asmcore::SimplifyResult& result)
+void CombineFigures(
+  const Communication& comm, const SimplifyShare& share, asmcore::SimplifyResult& result)
 {
   const Index keys = comm.Sum(result.NumberOfKeyPoints);
   const double sum = comm.Sum(result.AKPE * static_cast<double>(result.NumberOfKeyPoints));

@@ -45,8 +45,8 @@
  *    controller alone cannot tell "mpiexec -n 1" from a desktop session;
  *    the launcher's environment can), so K = 1, 2, 3 under mpiexec agree.
  *    A session not started by mpiexec takes the serial path unless
- *    AlwaysDistribute is on; the serial path gives the same points (7). The automatic cell size is searched first on points
- *    picked by a hash of their coordinates (CellSizeSubsample), the same
+ *    AlwaysDistribute is on; the serial path gives the same points (7). The automatic cell size is
+ * searched first on points picked by a hash of their coordinates (CellSizeSubsample), the same
  *    points for the serial and the distributed search.
  * 4. One global budget. The owners' (cell key, point count, surface
  *    variation) are gathered on process 0, which computes the shares and
@@ -216,8 +216,8 @@ private:
 };
 
 /// Distinct non-empty cells of `spec` over all processes (collective).
-Index CountOccupiedCells(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const asmcore::GridSpec& spec, const asmcore::Execution& execution = {});
+Index CountOccupiedCells(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::GridSpec& spec, const asmcore::Execution& execution = {});
 
 /// Collective: which process owns each cell of `grid` (boxes of cells from a
 /// recursive bisection balanced by the points xyz[3*id], id in ids, of every
@@ -240,21 +240,21 @@ struct LocalCloud
 {
   /// (The per-point arrays are PointArrays: filled in parallel, no serial
   /// zero fill first.)
-  asmcore::PointArray<double> Xyz;          ///< owned and halo points
+  asmcore::PointArray<double> Xyz; ///< owned and halo points
   /// Their cells, in slot order (point i in slot i): cell c holds the points
   /// [Cells.CellStart[c], Cells.CellStart[c + 1]), keys ascending.
   asmcore::CellGrid Cells;
-  asmcore::PointArray<char> Owned;          ///< 1: in a cell this process owns
-  asmcore::PointArray<int> SourceRank;      ///< process that held the point
-  asmcore::PointArray<long long> SourceId;  ///< its point id there
+  asmcore::PointArray<char> Owned;         ///< 1: in a cell this process owns
+  asmcore::PointArray<int> SourceRank;     ///< process that held the point
+  asmcore::PointArray<long long> SourceId; ///< its point id there
 
   Index Size() const { return static_cast<Index>(this->Xyz.size() / 3); }
   /// The points, 0 .. Size() - 1.
   asmcore::IdView Ids() const { return asmcore::IdView::Identity(this->Xyz.size() / 3); }
-  vtkSmartPointer<vtkPointData> PointData;  ///< the transferred arrays
-  std::vector<FetchedArray> Fetched;        ///< arrays read after the run
-  std::vector<std::string> ArrayOrder;      ///< every array passed on, in input order
-  std::vector<std::string> Dropped;         ///< arrays not transferred (and why)
+  vtkSmartPointer<vtkPointData> PointData; ///< the transferred arrays
+  std::vector<FetchedArray> Fetched;       ///< arrays read after the run
+  std::vector<std::string> ArrayOrder;     ///< every array passed on, in input order
+  std::vector<std::string> Dropped;        ///< arrays not transferred (and why)
 };
 
 /// Collective: send every point (xyz[3*id], id in ids, with the numeric
@@ -331,8 +331,8 @@ public:
   /// The core's ShareSamples hook: each process sends the samples of its
   /// owned cells to the processes whose box lies within `rings` cells
   /// (their halo), and takes the ones it receives for its halo cells.
-  std::function<void(const std::vector<std::uint64_t>&, const std::vector<Index>&,
-    std::vector<double>&)>
+  std::function<void(
+    const std::vector<std::uint64_t>&, const std::vector<Index>&, std::vector<double>&)>
   ShareHook(const SimplifyShare& share, int rings);
   void Finish();
 
@@ -346,8 +346,8 @@ private:
   /// One collective: this process's kind and payload; returns the payloads
   /// of the processes that still run, in process order (and whether one of
   /// them asks for an exchange).
-  std::vector<std::vector<double>> Round(Kind kind, const std::vector<double>& payload,
-    bool* exchange = nullptr);
+  std::vector<std::vector<double>> Round(
+    Kind kind, const std::vector<double>& payload, bool* exchange = nullptr);
   const Communication& Comm;
 };
 
@@ -369,8 +369,8 @@ void RunOnShare(const SimplifyShare& share, asmcore::SimplifyParameters& paramet
 /// Collective, after the core's run: the key point figures of the whole
 /// cloud in `result` (sums and maxima over the processes), the grid's cell
 /// size, and whether any process aborted.
-void CombineFigures(const Communication& comm, const SimplifyShare& share,
-  asmcore::SimplifyResult& result);
+void CombineFigures(
+  const Communication& comm, const SimplifyShare& share, asmcore::SimplifyResult& result);
 
 /// Collective, after the core's run: the arrays of `cloud.Fetched` for the
 /// samples of `result`, each sample taking the value of its representative

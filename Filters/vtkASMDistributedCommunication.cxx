@@ -82,8 +82,8 @@ void Communication::Sum(std::vector<double>& values) const
   if (this->Processes > 1 && !values.empty())
   {
     const std::vector<double> in = values;
-    this->Ctrl->AllReduce(in.data(), values.data(), static_cast<vtkIdType>(in.size()),
-      vtkCommunicator::SUM_OP);
+    this->Ctrl->AllReduce(
+      in.data(), values.data(), static_cast<vtkIdType>(in.size()), vtkCommunicator::SUM_OP);
   }
 }
 
@@ -92,8 +92,8 @@ void Communication::Sum(std::vector<long long>& values) const
   if (this->Processes > 1 && !values.empty())
   {
     const std::vector<long long> in = values;
-    this->Ctrl->AllReduce(in.data(), values.data(), static_cast<vtkIdType>(in.size()),
-      vtkCommunicator::SUM_OP);
+    this->Ctrl->AllReduce(
+      in.data(), values.data(), static_cast<vtkIdType>(in.size()), vtkCommunicator::SUM_OP);
   }
 }
 
@@ -127,8 +127,8 @@ namespace
 // All-to-all personalised exchange as K GatherV collectives (vtkCommunicator
 // has no AllToAllV; collectives cannot deadlock whatever the message sizes).
 template <typename T>
-asmcore::PointArray<T> ExchangeImpl(vtkMultiProcessController* ctrl, int rank, int size,
-  std::vector<asmcore::PointArray<T>>& send)
+asmcore::PointArray<T> ExchangeImpl(
+  vtkMultiProcessController* ctrl, int rank, int size, std::vector<asmcore::PointArray<T>>& send)
 {
   if (size == 1)
   {

@@ -99,11 +99,12 @@ std::function<void(std::vector<double>&)> CollectiveChannel::GatherHook()
   };
 }
 
-std::function<void(const std::vector<std::uint64_t>&, const std::vector<Index>&, std::vector<double>&)>
+std::function<void(
+  const std::vector<std::uint64_t>&, const std::vector<Index>&, std::vector<double>&)>
 CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
 {
-  return [this, &share, rings](const std::vector<std::uint64_t>& keys, const std::vector<Index>& start,
-           std::vector<double>& positions) {
+  return [this, &share, rings](const std::vector<std::uint64_t>& keys,
+           const std::vector<Index>& start, std::vector<double>& positions) {
     // Owned cells to the processes whose halo holds them: the owners of
     // the cells within `rings` (cell key halves, sample count, positions).
     const asmcore::CellPartition& partition = share.Partition;
@@ -125,7 +126,8 @@ CollectiveChannel::ShareHook(const SimplifyShare& share, int rings)
         asmcore::PointArray<double>& out = send[static_cast<std::size_t>(q)];
         asmcore::AppendAsDoubles(out, keys[c]);
         out.push_back(static_cast<double>(n));
-        out.insert(out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
+        out.insert(
+          out.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
       });
     }
     this->Round(Exchange, {}); // (finished processes take part in the exchange too)
@@ -168,8 +170,7 @@ void CollectiveChannel::Finish()
 }
 
 std::vector<Index> ApportionCells(const std::vector<Index>& capacity,
-  const std::vector<double>& variation, const asmcore::SimplifyParameters& parameters,
-  Index target)
+  const std::vector<double>& variation, const asmcore::SimplifyParameters& parameters, Index target)
 {
   if (parameters.Mode == asmcore::SimplifyMode::Paper)
   {
@@ -177,8 +178,8 @@ std::vector<Index> ApportionCells(const std::vector<Index>& capacity,
       asmcore::CellShares(capacity, variation, parameters), capacity, target);
   }
   // As SimplifyFeaturePreserving's step 3.
-  const std::vector<double> share = asmcore::CellShares(
-    capacity, variation, parameters, std::max(0.0, parameters.BudgetExponent));
+  const std::vector<double> share =
+    asmcore::CellShares(capacity, variation, parameters, std::max(0.0, parameters.BudgetExponent));
   return asmcore::ApportionWithCoverage(share, capacity, target, parameters.CoverEveryCell);
 }
 
@@ -263,7 +264,8 @@ void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz
   // Widest first; ties by position (the same order on every process).
   std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
     return a[0] > b[0] ||
-      (a[0] == b[0] && std::lexicographical_compare(a.begin() + 2, a.end(), b.begin() + 2, b.end()));
+      (a[0] == b[0] &&
+        std::lexicographical_compare(a.begin() + 2, a.end(), b.begin() + 2, b.end()));
   });
   std::vector<std::pair<double, double>> reachAndRadius(sorted.size());
   for (std::size_t k = 0; k < sorted.size(); ++k)
@@ -271,8 +273,7 @@ void BoundSnappedHolesAcross(const Communication& comm, asmcore::Coordinates xyz
     reachAndRadius[k] = { sorted[k][0], sorted[k][1] };
   }
   const double limit = asmcore::SnapBound(start, reachAndRadius);
-  asmcore::MoveSnappedSamples(
-    xyz, memberStart, members, mine, limit, positions.data(), execution);
+  asmcore::MoveSnappedSamples(xyz, memberStart, members, mine, limit, positions.data(), execution);
   for (const asmcore::SnapCandidate& c : mine)
   {
     std::copy_n(positions.data() + 3 * c.Sample, 3, result.Samples[c.Sample].Position);

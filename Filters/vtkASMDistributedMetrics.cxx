@@ -62,8 +62,8 @@ std::vector<double> Flatten(const std::vector<Eigen::Vector3d>& points)
 } // namespace
 
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
-  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors,
+  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids, const double* snormals,
+  const asmcore::ComparisonOptions& options, int curvatureNeighbors,
   const asmcore::Execution& threads)
 {
   asmcore::Execution execution;
@@ -83,8 +83,8 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   }
   Index offset = 0;
   const std::vector<double> all = comm.AllGather(mine, &offset);
-  const bool haveNormals = comm.Max(snormals || sids.empty() ? 0.0 : 1.0) == 0.0 &&
-    comm.Max(snormals ? 1.0 : 0.0) > 0.0;
+  const bool haveNormals =
+    comm.Max(snormals || sids.empty() ? 0.0 : 1.0) == 0.0 && comm.Max(snormals ? 1.0 : 0.0) > 0.0;
   const std::vector<double> allNormals =
     haveNormals ? comm.AllGather(myNormals) : std::vector<double>();
   const std::vector<Index> allIds = Iota(all.size() / 3);
@@ -142,8 +142,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   const std::vector<double> keyXyz = Flatten(originalKeys);
   const std::vector<double> simplifiedKeyXyz = Flatten(simplifiedKeys);
   const asmcore::Neighbors simplifiedTree(all.data(), allIds, execution);
-  const asmcore::Neighbors simplifiedKeyTree(
-    simplifiedKeyXyz.data(), Iota(simplifiedKeys.size()));
+  const asmcore::Neighbors simplifiedKeyTree(simplifiedKeyXyz.data(), Iota(simplifiedKeys.size()));
   std::vector<double> keyErrors = asmcore::NearestDistances(keyXyz.data(),
     Iota(originalKeys.size()), simplifiedKeys.empty() ? simplifiedTree : simplifiedKeyTree);
   if (options.Measure == asmcore::KeyPointDistance::Squared)

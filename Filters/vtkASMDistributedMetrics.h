@@ -32,8 +32,8 @@ namespace asmvtk
 struct DistributedComparison
 {
   asmcore::Comparison Figures;
-  Index OriginalPoints = 0;   ///< over all processes
-  Index SimplifiedPoints = 0; ///< over all processes
+  Index OriginalPoints = 0;                          ///< over all processes
+  Index SimplifiedPoints = 0;                        ///< over all processes
   std::vector<asmcore::CurvatureEstimate> Curvature; ///< when requested
 };
 
@@ -42,8 +42,8 @@ struct DistributedComparison
 /// process's own loops run on `threads` (its For only: a progress report
 /// that aborts one process would leave the others waiting in a collective).
 DistributedComparison CompareDistributed(const Communication& comm, const double* xyz,
-  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids,
-  const double* snormals, const asmcore::ComparisonOptions& options, int curvatureNeighbors,
+  asmcore::IdView ids, const double* sxyz, const std::vector<Index>& sids, const double* snormals,
+  const asmcore::ComparisonOptions& options, int curvatureNeighbors,
   const asmcore::Execution& threads = {});
 } // namespace asmvtk
 

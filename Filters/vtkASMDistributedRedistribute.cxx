@@ -6,8 +6,8 @@
 #include "Core/Grid.h"
 #include "Core/Selection.h"
 
-#include "vtkCommunicator.h"
 #include "vtkBitArray.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkMultiProcessController.h"
@@ -181,7 +181,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
       cloud.Fetched.push_back({ s.Name, s.Type, s.Components });
     }
   }
-  slots.erase(std::remove_if(slots.begin(), slots.end(), [](const ArraySlot& s) { return s.Fetched; }),
+  slots.erase(
+    std::remove_if(slots.begin(), slots.end(), [](const ArraySlot& s) { return s.Fetched; }),
     slots.end());
   // Record: x y z | arrays (bytes, each padded to whole doubles) | rank id.
   int width = 3;
@@ -288,8 +289,8 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
             {
               switch (s.Type)
               {
-                vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]);
-                                 std::memcpy(bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
+                vtkTemplateMacro(VTK_TT v = static_cast<VTK_TT>(tuple[c]); std::memcpy(
+                  bytes + static_cast<std::ptrdiff_t>(c) * size, &v, sizeof(v)));
               }
             }
           }

@@ -14,8 +14,8 @@
 #include "vtkCellArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
-#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -107,9 +107,8 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 /// reads them); other types are converted into `copy` as doubles (not
 /// zero-filled first). Both passes run in parallel (vtkSMPTools) over fixed
 /// blocks: the result does not depend on the thread count.
-inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points,
-  std::unique_ptr<double[]>& copy, asmcore::PointIds& idList, asmcore::IdView& ids,
-  bool threads = true, bool floatsInPlace = false)
+inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
+  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads = true, bool floatsInPlace = false)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -300,11 +299,12 @@ inline void AddFieldValue(vtkFieldData* fd, const char* name, double value)
 /// the positions `queries` (n x 3) from the k nearest points of the original
 /// cloud (xyz, ids, tree), signs following `normals` (n x 3, may be null).
 /// Returns false if aborted.
-inline bool AddCurvatureArrays(vtkPointData* pd, asmcore::Coordinates xyz,
-  asmcore::IdView ids, const asmcore::Neighbors& tree, const double* queries,
-  vtkIdType n, const double* normals, int k, const asmcore::Execution& execution)
+inline bool AddCurvatureArrays(vtkPointData* pd, asmcore::Coordinates xyz, asmcore::IdView ids,
+  const asmcore::Neighbors& tree, const double* queries, vtkIdType n, const double* normals, int k,
+  const asmcore::Execution& execution)
 {
-  const auto estimates = asmcore::EstimateCurvature(xyz, ids, tree, queries, n, normals, k, execution);
+  const auto estimates =
+    asmcore::EstimateCurvature(xyz, ids, tree, queries, n, normals, k, execution);
   if (static_cast<vtkIdType>(estimates.size()) != n)
   {
     return false;

@@ -93,8 +93,8 @@ bool ClusterMean(const SimplifyResult& result, const asmcore::Sample& sample, in
 struct MeanWorker
 {
   template <typename ArrayT>
-  void operator()(ArrayT* in, vtkDataArray* outBase, const SimplifyResult& result,
-    bool renormalise, bool parallel) const
+  void operator()(ArrayT* in, vtkDataArray* outBase, const SimplifyResult& result, bool renormalise,
+    bool parallel) const
   {
     auto* out = static_cast<ArrayT*>(outBase);
     using T = vtk::GetAPIType<ArrayT>;
@@ -109,7 +109,8 @@ struct MeanWorker
       {
         const asmcore::Sample& sample = result.Samples[s];
         auto dst = outTuples[s];
-        const bool ok = ClusterMean(result, sample, nc, renormalise,
+        const bool ok = ClusterMean(
+          result, sample, nc, renormalise,
           [&](Index id, int c) { return static_cast<double>(inTuples[id][c]); }, [](Index) {},
           sum.data(), n.data());
         if (!ok)
@@ -161,7 +162,8 @@ struct MeanWorker
         {
           const asmcore::Sample& sample = result.Samples[s];
           T* d = dst + s * nc;
-          const bool ok = ClusterMean(result, sample, nc, renormalise,
+          const bool ok = ClusterMean(
+            result, sample, nc, renormalise,
             [&](Index id, int c) { return static_cast<double>(src[id * nc + c]); },
             [&](Index id) { asmcore::Prefetch(src + id * nc); }, sum.data(), n.data());
           if (!ok)
@@ -179,11 +181,11 @@ struct MeanWorker
 };
 
 // Any AOS array: the representatives' tuples, copied as bytes.
-void CopyRepresentativesAOS(vtkDataArray* in, vtkDataArray* out,
-  const std::vector<vtkIdType>& representatives, bool parallel)
+void CopyRepresentativesAOS(
+  vtkDataArray* in, vtkDataArray* out, const std::vector<vtkIdType>& representatives, bool parallel)
 {
-  const std::size_t bytes =
-    static_cast<std::size_t>(in->GetDataTypeSize()) * static_cast<std::size_t>(in->GetNumberOfComponents());
+  const std::size_t bytes = static_cast<std::size_t>(in->GetDataTypeSize()) *
+    static_cast<std::size_t>(in->GetNumberOfComponents());
   const auto* src = static_cast<const unsigned char*>(in->GetVoidPointer(0));
   auto* dst = static_cast<unsigned char*>(out->GetVoidPointer(0));
   asmvtk::For(parallel, 0, static_cast<vtkIdType>(representatives.size()),
@@ -227,15 +229,14 @@ int CompareTuples(vtkAbstractArray* array, vtkIdType a, vtkIdType b)
   {
     switch (data->GetDataType())
     {
-      vtkTemplateMacro(
-        const auto* values = static_cast<const VTK_TT*>(data->GetVoidPointer(0));
-        for (int c = 0; c < nc; ++c) {
-          const int order = CompareValues(values[a * nc + c], values[b * nc + c]);
-          if (order != 0)
-          {
-            return order;
-          }
-        });
+      vtkTemplateMacro(const auto* values = static_cast<const VTK_TT*>(data->GetVoidPointer(0));
+                       for (int c = 0; c < nc; ++c) {
+                         const int order = CompareValues(values[a * nc + c], values[b * nc + c]);
+                         if (order != 0)
+                         {
+                           return order;
+                         }
+                       });
     }
     return 0;
   }
@@ -290,11 +291,10 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
     vtkAbstractArray* in = inPD->GetAbstractArray(i);
     if (!in || in->GetNumberOfTuples() < numberOfPoints || in->GetNumberOfComponents() < 1)
     {
-      vtkWarningWithObjectMacro(reporter, << "Point-data array "
-                                          << (in && in->GetName() ? in->GetName() : "(unnamed)")
-                                          << " has " << (in ? in->GetNumberOfTuples() : 0)
-                                          << " tuples for " << numberOfPoints
-                                          << " points: not carried to the output.");
+      vtkWarningWithObjectMacro(
+        reporter, << "Point-data array " << (in && in->GetName() ? in->GetName() : "(unnamed)")
+                  << " has " << (in ? in->GetNumberOfTuples() : 0) << " tuples for "
+                  << numberOfPoints << " points: not carried to the output.");
       ++dropped;
       continue;
     }
@@ -370,8 +370,8 @@ void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap
     }
     return a < b;
   };
-  asmvtk::For(threads, 0, static_cast<vtkIdType>(result.Samples.size()),
-    [&](vtkIdType begin, vtkIdType end) {
+  asmvtk::For(
+    threads, 0, static_cast<vtkIdType>(result.Samples.size()), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType s = begin; s < end; ++s)
       {
         asmcore::Sample& sample = result.Samples[s];

@@ -4,8 +4,8 @@
 #include "Core/CellNeighbors.h"
 #include "Core/Grid.h"
 #include "Core/Simplify.h"
-#include "vtkASMDistributed.h"
 #include "vtkASMCompositeInput.h"
+#include "vtkASMDistributed.h"
 #include "vtkASMFilterUtilities.h"
 #include "vtkASMPointDataAggregation.h"
 #include "vtkASMSimplifySteps.h"
@@ -63,9 +63,8 @@ bool vtkASMSimplify::CheckParameters()
   const double values[] = { this->OutputFraction, this->CellSize, this->SamplesPerCell, this->Alpha,
     this->ErrorTolerance, this->CurvatureWeight, this->FeatureSamplesPerCell, this->VariationBudget,
     this->VariationCap };
-  const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha",
-    "ErrorTolerance", "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget",
-    "VariationCap" };
+  const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha", "ErrorTolerance",
+    "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget", "VariationCap" };
   for (std::size_t i = 0; i < sizeof(values) / sizeof(values[0]); ++i)
   {
     if (!std::isfinite(values[i]))
@@ -93,7 +92,8 @@ int vtkASMSimplify::RequestData(
     merged = asmvtk::MergeLeaves(composite, asmvtk::LeafData::ArraysAndOrigins, dropped);
     for (const std::string& name : dropped)
     {
-      vtkWarningMacro(<< "Point array " << name << " is not on every block with points: it is not passed on.");
+      vtkWarningMacro(<< "Point array " << name
+                      << " is not on every block with points: it is not passed on.");
     }
     input = merged;
   }
@@ -151,7 +151,8 @@ int vtkASMSimplify::RequestData(
   }
   if (skipped > 0)
   {
-    vtkWarningMacro(<< skipped << " input points have NaN or infinite coordinates; they are ignored.");
+    vtkWarningMacro(<< skipped
+                    << " input points have NaN or infinite coordinates; they are ignored.");
   }
   vtkIdType target = this->TargetMode == OUTPUT_FRACTION
     ? static_cast<vtkIdType>(std::llround(this->OutputFraction * static_cast<double>(valid)))
@@ -169,7 +170,8 @@ int vtkASMSimplify::RequestData(
     target = valid;
   }
 
-  if (this->Mode != PAPER && target > static_cast<vtkIdType>(std::numeric_limits<asmcore::SampleId>::max()))
+  if (this->Mode != PAPER &&
+    target > static_cast<vtkIdType>(std::numeric_limits<asmcore::SampleId>::max()))
   {
     vtkErrorMacro(<< "The feature-preserving mode keeps at most "
                   << std::numeric_limits<asmcore::SampleId>::max() << " output points (asked: "
@@ -216,9 +218,8 @@ int vtkASMSimplify::RequestData(
     parameters.ErrorTolerance *=
       distributed ? share.Diagonal : asmcore::ComputeBounds(xyz, ids).Diagonal();
   }
-  parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE
-    ? std::numeric_limits<double>::epsilon()
-    : std::numeric_limits<float>::epsilon();
+  parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE ? std::numeric_limits<double>::epsilon()
+                                                          : std::numeric_limits<float>::epsilon();
 
   asmvtk::CollectiveChannel channel(comm);
   if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving)
@@ -228,7 +229,8 @@ int vtkASMSimplify::RequestData(
     parameters.ShareSamples = channel.ShareHook(share, asmvtk::HaloRingsFor(parameters));
   }
   asmcore::SimplifyResult result = asmcore::Simplify(xyz, ids, normals, parameters,
-    asmvtk::SMPExecution(this, distributed ? 0.2 : 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
+    asmvtk::SMPExecution(
+      this, distributed ? 0.2 : 0.0, this->GenerateCurvature ? 0.7 : 0.9, threads));
   if (distributed)
   {
     if (parameters.SumOverProcesses)
@@ -281,8 +283,7 @@ int vtkASMSimplify::RequestData(
 
   // Points (one vertex cell each) and the generated arrays.
   const bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
-    (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION &&
-      pointsType == VTK_DOUBLE);
+    (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION && pointsType == VTK_DOUBLE);
   vtkAbstractArray* inputNamedNormals = inPD->GetAbstractArray("Normals");
   const bool nameTaken = // by an input array that is carried (see AggregatePointData)
     inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;
@@ -301,7 +302,8 @@ int vtkASMSimplify::RequestData(
     vtkWarningMacro(<< "The string, variant and bit arrays could not be read from the other "
                        "processes: they are not passed on.");
   }
-  asmcore::PointArray<asmcore::Index>().swap(result.Members); // used up: room for the curvature's tree
+  asmcore::PointArray<asmcore::Index>().swap(
+    result.Members); // used up: room for the curvature's tree
   outPD->AddArray(generated.KeyPoint);
   outPD->AddArray(generated.ClusterSize);
   outPD->AddArray(generated.SurfaceVariation);
@@ -399,8 +401,9 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "RelativeErrorTolerance: " << this->RelativeErrorTolerance << "\n";
-  os << indent << "WeightMode: "
-     << (this->WeightMode == UNIFORM_WEIGHT ? "Uniform" : "SurfaceVariation") << "\n";
+  os << indent
+     << "WeightMode: " << (this->WeightMode == UNIFORM_WEIGHT ? "Uniform" : "SurfaceVariation")
+     << "\n";
   os << indent << "CurvatureWeight: " << this->CurvatureWeight << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "SnapToInputPoints: " << this->SnapToInputPoints << "\n";

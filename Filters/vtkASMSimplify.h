@@ -43,10 +43,10 @@
  * sample's grid cell); "vtkOriginalPointIds" (id of the input point nearest
  * the sample's cluster centroid); with GenerateCurvature (default on),
  * "MeanCurvature" and "NeighborhoodSurfaceVariation" from the input points
- * around each sample (see vtkKeyPointError for measuring a simplification). Field data: "AKPE" and "MKPE" (mean and
- * maximum distance, in data units, between each key point placed and the
- * extreme input point it stands for), "NumberOfKeyPoints", "CellSize",
- * "NumberOfSkippedPoints" (non-finite input points ignored).
+ * around each sample (see vtkKeyPointError for measuring a simplification). Field data: "AKPE" and
+ * "MKPE" (mean and maximum distance, in data units, between each key point placed and the extreme
+ * input point it stands for), "NumberOfKeyPoints", "CellSize", "NumberOfSkippedPoints" (non-finite
+ * input points ignored).
  *
  * Composite input (a vtkMultiBlockDataSet of scans, the vtkPartitionedDataSet
  * of a partitioned file, ...): the vtkPointSet leaves are ONE cloud, not one

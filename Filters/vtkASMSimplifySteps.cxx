@@ -130,8 +130,8 @@ SampleArrays WriteSamples(const asmcore::SimplifyResult& result, bool doublePrec
   return arrays;
 }
 
-bool AddSampleCurvature(vtkPointData* pd, asmcore::SimplifyResult& result,
-  asmcore::Coordinates xyz, asmcore::IdView ids, int k, vtkAlgorithm* filter, bool threads)
+bool AddSampleCurvature(vtkPointData* pd, asmcore::SimplifyResult& result, asmcore::Coordinates xyz,
+  asmcore::IdView ids, int k, vtkAlgorithm* filter, bool threads)
 {
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   std::vector<double> positions(static_cast<std::size_t>(3 * count));

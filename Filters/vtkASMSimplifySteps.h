@@ -46,11 +46,11 @@ asmcore::NormalField InputNormals(
 /// The arrays vtkASMSimplify generates for each output point.
 struct SampleArrays
 {
-  vtkSmartPointer<vtkUnsignedCharArray> KeyPoint;     ///< "KeyPoint": 1 for key points
-  vtkSmartPointer<vtkIdTypeArray> ClusterSize;        ///< "ClusterSize": input points represented
-  vtkSmartPointer<vtkDoubleArray> SurfaceVariation;   ///< "SurfaceVariation" of the sample's cell
-  vtkSmartPointer<vtkIdTypeArray> OriginalIds;        ///< "vtkOriginalPointIds": the representative
-  vtkSmartPointer<vtkFloatArray> Normals;             ///< the cell's PCA normal, oriented
+  vtkSmartPointer<vtkUnsignedCharArray> KeyPoint;   ///< "KeyPoint": 1 for key points
+  vtkSmartPointer<vtkIdTypeArray> ClusterSize;      ///< "ClusterSize": input points represented
+  vtkSmartPointer<vtkDoubleArray> SurfaceVariation; ///< "SurfaceVariation" of the sample's cell
+  vtkSmartPointer<vtkIdTypeArray> OriginalIds;      ///< "vtkOriginalPointIds": the representative
+  vtkSmartPointer<vtkFloatArray> Normals;           ///< the cell's PCA normal, oriented
 };
 
 /// Sets the output's points (one per sample, double or float, with one
@@ -66,8 +66,8 @@ SampleArrays WriteSamples(const asmcore::SimplifyResult& result, bool doublePrec
 /// the samples' normals. Releases result.Samples first (room for the k-d
 /// tree). Progress from 0.72 to 0.95 of `filter`'s. Returns false if
 /// aborted.
-bool AddSampleCurvature(vtkPointData* pd, asmcore::SimplifyResult& result,
-  asmcore::Coordinates xyz, asmcore::IdView ids, int k, vtkAlgorithm* filter, bool threads);
+bool AddSampleCurvature(vtkPointData* pd, asmcore::SimplifyResult& result, asmcore::Coordinates xyz,
+  asmcore::IdView ids, int k, vtkAlgorithm* filter, bool threads);
 } // namespace asmvtk
 
 #endif

@@ -124,7 +124,8 @@ int vtkKeyPointError::RequestData(
   vtkTable* table = vtkTable::GetData(outputVector, 1);
   if (!original || !simplified || !output || !table)
   {
-    vtkErrorMacro(<< "Needs two point sets: the original (port 0) and a simplified cloud (port 1).");
+    vtkErrorMacro(
+      << "Needs two point sets: the original (port 0) and a simplified cloud (port 1).");
     return 0;
   }
   if (!std::isfinite(this->CellSize))
@@ -160,7 +161,8 @@ int vtkKeyPointError::RequestData(
                     << ") than the original (" << orig.Ids.size() << "): check the inputs' order.");
   }
   if (!distributed &&
-    !Overlap(asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
+    !Overlap(
+      asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
   {
     vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
                        "between unrelated clouds.");
@@ -173,8 +175,9 @@ int vtkKeyPointError::RequestData(
     : std::numeric_limits<float>::epsilon();
   options.CellSize = this->CellSize;
   options.SamplesPerCell = this->SamplesPerCell;
-  options.Measure = this->DistanceMeasure == SQUARED_DISTANCE ? asmcore::KeyPointDistance::Squared
-                                                              : asmcore::KeyPointDistance::Euclidean;
+  options.Measure = this->DistanceMeasure == SQUARED_DISTANCE
+    ? asmcore::KeyPointDistance::Squared
+    : asmcore::KeyPointDistance::Euclidean;
   options.PlaneNeighbors = this->PlaneNeighbors;
   asmvtk::DistributedComparison shared;
   if (distributed)
@@ -240,8 +243,8 @@ int vtkKeyPointError::RequestData(
     // Estimated at the finite simplified points, signed by their normals.
     std::vector<double> queries, normals;
     vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
-    const bool useNormals = inNormals && inNormals->GetNumberOfComponents() == 3 &&
-      inNormals->GetNumberOfTuples() >= n;
+    const bool useNormals =
+      inNormals && inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= n;
     for (Index id : simp.Ids)
     {
       queries.insert(queries.end(), simp.Xyz + 3 * id, simp.Xyz + 3 * id + 3);
@@ -275,10 +278,12 @@ int vtkKeyPointError::RequestData(
 
   // The figures: field data of the output, and a one-row table.
   const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : 1.0;
-  const double keyScale = this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
+  const double keyScale =
+    this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
   const std::vector<std::pair<const char*, double>> figures = {
     { "NumberOfOriginalPoints",
-      static_cast<double>(distributed ? shared.OriginalPoints : static_cast<Index>(orig.Ids.size())) },
+      static_cast<double>(
+        distributed ? shared.OriginalPoints : static_cast<Index>(orig.Ids.size())) },
     { "NumberOfSimplifiedPoints",
       static_cast<double>(
         distributed ? shared.SimplifiedPoints : static_cast<Index>(simp.Ids.size())) },

@@ -47,7 +47,8 @@ std::vector<int> ParseList(const std::string& text)
 
 // Slabs of the longest axis: each axis index goes to the slab holding the
 // middle of its points (contiguous slabs of about N / K points).
-std::vector<int> SlabOfIndex(const asmcore::GridSpec& grid, int axis, const std::vector<double>& xyz, int k)
+std::vector<int> SlabOfIndex(
+  const asmcore::GridSpec& grid, int axis, const std::vector<double>& xyz, int k)
 {
   std::vector<long long> count(static_cast<std::size_t>(grid.Dims[axis]), 0);
   const std::size_t n = xyz.size() / 3;
@@ -112,24 +113,27 @@ int main(int argc, char* argv[])
   const asmcore::IdView ids = asmcore::IdView::Identity(static_cast<std::size_t>(n));
   const asmcore::Bounds bounds = asmcore::ComputeBounds(xyz.data(), ids);
   const double targetCells = fraction * static_cast<double>(n) / 4.0;
-  const asmcore::GridSpec grid =
-    asmcore::GridSpec::Make(bounds, asmcore::AutomaticCellSize(xyz.data(), ids, bounds, targetCells));
+  const asmcore::GridSpec grid = asmcore::GridSpec::Make(
+    bounds, asmcore::AutomaticCellSize(xyz.data(), ids, bounds, targetCells));
   int axis = 0;
   for (int a = 1; a < 3; ++a)
   {
     axis = grid.Dims[a] > grid.Dims[axis] ? a : axis;
   }
-  std::printf("%s: %lld points, grid %lld x %lld x %lld cells (N_s = %.3g x N, 4 samples per cell)\n\n",
+  std::printf(
+    "%s: %lld points, grid %lld x %lld x %lld cells (N_s = %.3g x N, 4 samples per cell)\n\n",
     in.Name.c_str(), static_cast<long long>(n), static_cast<long long>(grid.Dims[0]),
     static_cast<long long>(grid.Dims[1]), static_cast<long long>(grid.Dims[2]), fraction);
-  std::printf("| K | halo rings | held / N, boxes | held / N, slabs | busiest x N/K, boxes | busiest x N/K, slabs |\n");
+  std::printf("| K | halo rings | held / N, boxes | held / N, slabs | busiest x N/K, boxes | "
+              "busiest x N/K, slabs |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|\n");
   std::vector<double> buildSeconds; // (the boxes' build, one thread, all N points on one process)
   for (int k : processes)
   {
     const auto start = std::chrono::steady_clock::now();
     const asmcore::CellPartition boxes = asmcore::MakeCellPartition(grid, k, xyz.data(), ids);
-    buildSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    buildSeconds.push_back(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     const std::vector<int> slabOf = SlabOfIndex(grid, axis, xyz, k);
     for (int h : halos)
     {
@@ -140,8 +144,10 @@ int main(int argc, char* argv[])
         std::int64_t ijk[3];
         boxes.CellOfPoint(xyz.data() + 3 * i, ijk);
         boxes.ForEachOwnerNear(ijk, h, [&](int q) { ++inBox[static_cast<std::size_t>(q)]; });
-        const int first = slabOf[static_cast<std::size_t>(std::max<std::int64_t>(0, ijk[axis] - h))];
-        const int last = slabOf[static_cast<std::size_t>(std::min(grid.Dims[axis] - 1, ijk[axis] + h))];
+        const int first =
+          slabOf[static_cast<std::size_t>(std::max<std::int64_t>(0, ijk[axis] - h))];
+        const int last =
+          slabOf[static_cast<std::size_t>(std::min(grid.Dims[axis] - 1, ijk[axis] + h))];
         for (int q = first; q <= last; ++q)
         {
           ++inSlab[static_cast<std::size_t>(q)];
@@ -156,16 +162,18 @@ int main(int argc, char* argv[])
         return static_cast<double>(s) / static_cast<double>(n);
       };
       auto busiest = [&](const std::vector<long long>& v) {
-        return static_cast<double>(*std::max_element(v.begin(), v.end())) * k / static_cast<double>(n);
+        return static_cast<double>(*std::max_element(v.begin(), v.end())) * k /
+          static_cast<double>(n);
       };
-      std::printf("| %d | %d | %.3f | %.3f | %.3f | %.3f |\n", k, h, total(inBox), total(inSlab), busiest(inBox),
-        busiest(inSlab));
+      std::printf("| %d | %d | %.3f | %.3f | %.3f | %.3f |\n", k, h, total(inBox), total(inSlab),
+        busiest(inBox), busiest(inSlab));
     }
   }
   std::printf("\nBuilding the boxes (one thread, all %lld points):", static_cast<long long>(n));
   for (std::size_t j = 0; j < processes.size(); ++j)
   {
-    std::printf(" K = %d %.3f s%s", processes[j], buildSeconds[j], j + 1 < processes.size() ? "," : "\n");
+    std::printf(
+      " K = %d %.3f s%s", processes[j], buildSeconds[j], j + 1 < processes.size() ? "," : "\n");
   }
   return 0;
 }

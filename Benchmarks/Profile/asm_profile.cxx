@@ -34,9 +34,9 @@
  * --stages also times the core's stages one by one (same calls as
  * asmcore::Simplify makes), one thread. --dump writes the output points,
  * original ids and key flags of the last run as text (for before/after
- * comparisons; with each point's ClusterSize). Times: medians of wall and of process CPU time (the latter
- * is robust to a loaded machine). Peak memory: VmHWM after resetting it (clear_refs 5) once the
- * input exists, minus the resident size then, per input point.
+ * comparisons; with each point's ClusterSize). Times: medians of wall and of process CPU time (the
+ * latter is robust to a loaded machine). Peak memory: VmHWM after resetting it (clear_refs 5) once
+ * the input exists, minus the resident size then, per input point.
  */
 #include "Core/Budget.h"
 #include "Core/CellFrame.h"
@@ -281,8 +281,8 @@ void TimeCurvature(
   }
   std::printf("    curvature at %lld positions, best of 3: tree %.1f ms, %d nearest %.1f ms "
               "(%.2f us each), estimates with their queries %.1f ms (check %g)\n",
-    (long long)nq, 1e3 * build, DefaultCurvatureNeighbors, 1e3 * knn, 1e6 * knn / std::max<Index>(nq, 1),
-    1e3 * all, check);
+    (long long)nq, 1e3 * build, DefaultCurvatureNeighbors, 1e3 * knn,
+    1e6 * knn / std::max<Index>(nq, 1), 1e3 * all, check);
 }
 
 // The core's stages one by one, one thread (mirrors asmcore::Simplify).
@@ -369,7 +369,8 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
     const double c0 = Cpu();
     const SimplifyResult result = Simplify(xyz, ids, nullptr, parameters, counting);
     const double total = Cpu() - c0;
-    std::printf("    asmcore::Simplify %.1f ms, %.1f %% of it in parallel loops: 2-thread bound %.2fx\n",
+    std::printf(
+      "    asmcore::Simplify %.1f ms, %.1f %% of it in parallel loops: 2-thread bound %.2fx\n",
       1e3 * total, 100.0 * inside / total, 1.0 / ((total - inside) / total + 0.5 * inside / total));
     for (const Sample& s : result.Samples)
     {
@@ -529,8 +530,7 @@ void TimeFloor(vtkPolyData* input, double fraction)
   const Coordinates xyz =
     asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids, true, true);
   const auto n = static_cast<double>(ids.size());
-  const double cellSize =
-    AutomaticCellSize(xyz, ids, ComputeBounds(xyz, ids), fraction * n / 8.0);
+  const double cellSize = AutomaticCellSize(xyz, ids, ComputeBounds(xyz, ids), fraction * n / 8.0);
   double best[5] = { 1e9, 1e9, 1e9, 1e9, 1e9 };
   double sum = 0.0;
   for (int r = 0; r < 3; ++r)
@@ -592,7 +592,8 @@ void AddScanArrays(vtkPolyData* input)
     const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     for (int a = 0; a < 3; ++a)
     {
-      rgb->SetTypedComponent(i, a, static_cast<unsigned char>(127.5 * (1.0 + p[a] / (r > 0 ? r : 1))));
+      rgb->SetTypedComponent(
+        i, a, static_cast<unsigned char>(127.5 * (1.0 + p[a] / (r > 0 ? r : 1))));
       normals->SetTypedComponent(i, a, static_cast<float>(r > 0 ? p[a] / r : 0.0));
     }
     intensity->SetValue(i, static_cast<float>(r));
@@ -659,7 +660,9 @@ int main(int argc, char* argv[])
     else if (a == "--dump")
       dump = next, ++i;
     else if (a == "--mode")
-      mode = std::string(next) == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING, ++i;
+      mode =
+        std::string(next) == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING,
+      ++i;
     else if (a == "--set")
       settings = next, ++i;
     else if (a == "--curvature")

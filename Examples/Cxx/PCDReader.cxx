@@ -62,7 +62,8 @@ vtkSmartPointer<vtkDataArray> NewPCDArray(const PCDField& f)
   else if (t == "I8")
     array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_LONG_LONG));
   else if (t == "U8")
-    array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_UNSIGNED_LONG_LONG));
+    array =
+      vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_UNSIGNED_LONG_LONG));
   return array;
 }
 
@@ -72,12 +73,14 @@ double DecodeBinary(const unsigned char* p, char type, int size)
   switch (size)
   {
     case 1:
-      return type == 'I' ? static_cast<double>(static_cast<std::int8_t>(*p)) : static_cast<double>(*p);
+      return type == 'I' ? static_cast<double>(static_cast<std::int8_t>(*p))
+                         : static_cast<double>(*p);
     case 2:
     {
       std::uint16_t u;
       std::memcpy(&u, p, 2);
-      return type == 'I' ? static_cast<double>(static_cast<std::int16_t>(u)) : static_cast<double>(u);
+      return type == 'I' ? static_cast<double>(static_cast<std::int16_t>(u))
+                         : static_cast<double>(u);
     }
     case 4:
     {
@@ -89,7 +92,8 @@ double DecodeBinary(const unsigned char* p, char type, int size)
       }
       std::uint32_t u;
       std::memcpy(&u, p, 4);
-      return type == 'I' ? static_cast<double>(static_cast<std::int32_t>(u)) : static_cast<double>(u);
+      return type == 'I' ? static_cast<double>(static_cast<std::int32_t>(u))
+                         : static_cast<double>(u);
     }
     default:
     {
@@ -101,7 +105,8 @@ double DecodeBinary(const unsigned char* p, char type, int size)
       }
       std::uint64_t u;
       std::memcpy(&u, p, 8);
-      return type == 'I' ? static_cast<double>(static_cast<std::int64_t>(u)) : static_cast<double>(u);
+      return type == 'I' ? static_cast<double>(static_cast<std::int64_t>(u))
+                         : static_cast<double>(u);
     }
   }
 }
@@ -117,7 +122,8 @@ void StorePackedColor(vtkDataArray* rgb, vtkIdType point, const unsigned char* b
 }
 } // namespace
 
-bool LZFDecompress(const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out)
+bool LZFDecompress(
+  const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out)
 {
   out.clear();
   out.reserve(size);
@@ -326,7 +332,8 @@ vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error
       const std::size_t bytes = static_cast<std::size_t>(field.Size * field.Count);
       for (vtkIdType i = 0; i < n; ++i)
       {
-        std::memcpy(records.data() + i * stride + recordOffset, fieldMajor.data() + fieldStart + i * bytes, bytes);
+        std::memcpy(records.data() + i * stride + recordOffset,
+          fieldMajor.data() + fieldStart + i * bytes, bytes);
       }
       fieldStart += bytes * static_cast<std::size_t>(n);
       recordOffset += bytes;
@@ -385,7 +392,8 @@ vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error
           if (offset >= words.size() || !ParseDouble(words[offset], value))
           {
             // PCL writes "nan" for missing points, which strtod reads; anything else is an error.
-            error = path + ": point " + std::to_string(i) + ": bad or missing value of field " + field.Name;
+            error = path + ": point " + std::to_string(i) + ": bad or missing value of field " +
+              field.Name;
             return nullptr;
           }
           if (field.PackedColor)

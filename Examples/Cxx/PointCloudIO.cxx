@@ -58,7 +58,8 @@ public:
       {
         this->Message.erase(0, object + 3);
       }
-      while (!this->Message.empty() && std::isspace(static_cast<unsigned char>(this->Message.back())))
+      while (
+        !this->Message.empty() && std::isspace(static_cast<unsigned char>(this->Message.back())))
       {
         this->Message.pop_back();
       }
@@ -114,7 +115,8 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
       }
       if (row.size() < 3)
       {
-        error = path + ":" + std::to_string(lineNumber) + ": a point needs at least 3 numbers (x y z)";
+        error =
+          path + ":" + std::to_string(lineNumber) + ": a point needs at least 3 numbers (x y z)";
         return nullptr;
       }
       width = row.size();
@@ -145,8 +147,9 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
   std::size_t xyz[3] = { 0, 1, 2 };
   for (int axis = 0; axis < 3; ++axis)
   {
-    const auto it = std::find_if(names.begin(), names.end(),
-      [axis](const std::string& n) { return Lower(n) == std::string(1, static_cast<char>('x' + axis)); });
+    const auto it = std::find_if(names.begin(), names.end(), [axis](const std::string& n) {
+      return Lower(n) == std::string(1, static_cast<char>('x' + axis));
+    });
     if (it == names.end())
     {
       xyz[0] = 0, xyz[1] = 1, xyz[2] = 2;

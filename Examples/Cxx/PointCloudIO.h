@@ -38,7 +38,8 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
 
 /// Decompresses LZF data (the format of PCD's binary_compressed) that must
 /// expand to exactly `size` bytes; false on corrupt input.
-bool LZFDecompress(const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out);
+bool LZFDecompress(
+  const std::vector<unsigned char>& in, std::size_t size, std::vector<unsigned char>& out);
 
 /// Reads a PCD file, DATA ascii, binary or binary_compressed.
 vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error);

@@ -111,9 +111,8 @@ void TestPCD()
   // ASCII with an integer-packed rgb and a 3-component field.
   auto cloud = pcio::ReadPointCloud(
     Write("a.pcd",
-      PCDHeader("x y z rgb normal", "4 4 4 4 4", "F F F U F", "1 1 1 1 3", 2, "ascii") +
-        "1 2 3 " + std::to_string((10u << 16) | (20u << 8) | 30u) + " 0 0 1\n" +
-        "4 5 6 0 1 0 0\n"),
+      PCDHeader("x y z rgb normal", "4 4 4 4 4", "F F F U F", "1 1 1 1 3", 2, "ascii") + "1 2 3 " +
+        std::to_string((10u << 16) | (20u << 8) | 30u) + " 0 0 1\n" + "4 5 6 0 1 0 0\n"),
     error);
   CHECK(cloud && cloud->GetNumberOfPoints() == 2);
   if (cloud)
@@ -127,7 +126,8 @@ void TestPCD()
   }
 
   // Binary: float x y z, float-packed rgb, uint16 intensity, 2 bytes padding "_".
-  std::string bytes = PCDHeader("x y z rgb intensity _", "4 4 4 4 2 1", "F F F F U U", "1 1 1 1 1 2", 3, "binary");
+  std::string bytes =
+    PCDHeader("x y z rgb intensity _", "4 4 4 4 2 1", "F F F F U U", "1 1 1 1 1 2", 3, "binary");
   const std::string header = bytes;
   for (int i = 0; i < 3; ++i)
   {
@@ -144,21 +144,28 @@ void TestPCD()
   {
     CHECK(PointIs(cloud, 2, 3.0, -4.0, 0.25));
     vtkDataArray* intensity = cloud->GetPointData()->GetArray("intensity");
-    CHECK(intensity && intensity->GetDataType() == VTK_UNSIGNED_SHORT && intensity->GetTuple1(2) == 1002);
+    CHECK(intensity && intensity->GetDataType() == VTK_UNSIGNED_SHORT &&
+      intensity->GetTuple1(2) == 1002);
     vtkDataArray* rgb = cloud->GetPointData()->GetArray("RGB");
-    CHECK(rgb && rgb->GetComponent(2, 0) == 255 && rgb->GetComponent(2, 1) == 128 && rgb->GetComponent(2, 2) == 2);
+    CHECK(rgb && rgb->GetComponent(2, 0) == 255 && rgb->GetComponent(2, 1) == 128 &&
+      rgb->GetComponent(2, 2) == 2);
     CHECK(cloud->GetPointData()->GetArray("_") == nullptr);
   }
   // Truncated binary data, unsupported compression, no coordinates, not a PCD.
   cloud = pcio::ReadPCD(Write("truncated.pcd", bytes.substr(0, bytes.size() - 5)), error);
   CHECK(!cloud && error.find("ends after 2 of 3 points") != std::string::npos);
-  cloud = pcio::ReadPCD(Write("c.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 1, "lzma")), error);
+  cloud =
+    pcio::ReadPCD(Write("c.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 1, "lzma")), error);
   CHECK(!cloud && error.find("PCD DATA lzma is not supported") != std::string::npos);
-  cloud = pcio::ReadPCD(Write("noxyz.pcd", PCDHeader("a b c", "4 4 4", "F F F", "1 1 1", 1, "ascii") + "1 2 3\n"), error);
+  cloud = pcio::ReadPCD(
+    Write("noxyz.pcd", PCDHeader("a b c", "4 4 4", "F F F", "1 1 1", 1, "ascii") + "1 2 3\n"),
+    error);
   CHECK(!cloud && error.find("no x y z") != std::string::npos);
   cloud = pcio::ReadPCD(Write("text.pcd", "hello world\n"), error);
   CHECK(!cloud && error.find("not a PCD file") != std::string::npos);
-  cloud = pcio::ReadPCD(Write("short.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 2, "ascii") + "1 2 3\n"), error);
+  cloud = pcio::ReadPCD(
+    Write("short.pcd", PCDHeader("x y z", "4 4 4", "F F F", "1 1 1", 2, "ascii") + "1 2 3\n"),
+    error);
   CHECK(!cloud && error.find("ends after 1 of 2") != std::string::npos);
 }
 
@@ -181,9 +188,10 @@ void TestCompressedPCD()
   const std::vector<unsigned char> lzf = { 2, 'a', 'b', 'c', (4 << 5) | 0, 2 };
   std::vector<unsigned char> out;
   CHECK(pcio::LZFDecompress(lzf, 9, out) && std::string(out.begin(), out.end()) == "abcabcabc");
-  CHECK(!pcio::LZFDecompress(lzf, 8, out));                                      // wrong size
-  CHECK(!pcio::LZFDecompress({ 2, 'a', 'b', 'c', (4 << 5) | 0, 5 }, 9, out)); // reference before the start
-  CHECK(!pcio::LZFDecompress({ 5, 'a' }, 6, out));                              // truncated literal
+  CHECK(!pcio::LZFDecompress(lzf, 8, out)); // wrong size
+  CHECK(!pcio::LZFDecompress(
+    { 2, 'a', 'b', 'c', (4 << 5) | 0, 5 }, 9, out)); // reference before the start
+  CHECK(!pcio::LZFDecompress({ 5, 'a' }, 6, out));   // truncated literal
 
   // 3 points, fields x y z (F4) and intensity (U2), stored field after field.
   std::string fieldMajor;
@@ -193,7 +201,8 @@ void TestCompressedPCD()
   for (int i = 0; i < 3; ++i)
     Append<std::uint16_t>(fieldMajor, static_cast<std::uint16_t>(500 + i));
   const std::string packed = LZFLiterals(fieldMajor);
-  std::string file = PCDHeader("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 3, "binary_compressed");
+  std::string file =
+    PCDHeader("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 3, "binary_compressed");
   Append<std::uint32_t>(file, static_cast<std::uint32_t>(packed.size()));
   Append<std::uint32_t>(file, static_cast<std::uint32_t>(fieldMajor.size()));
   file += packed;
@@ -213,7 +222,8 @@ void TestCompressedPCD()
 void TestDispatchAndRoundTrip()
 {
   std::string error;
-  CHECK(!pcio::ReadPointCloud(Dir + "/does-not-exist.ply", error) && error.find("cannot open") == 0);
+  CHECK(
+    !pcio::ReadPointCloud(Dir + "/does-not-exist.ply", error) && error.find("cannot open") == 0);
   CHECK(!pcio::ReadPointCloud(Write("x.obj", "v 1 2 3\n"), error) &&
     error.find("unknown extension 'obj'") != std::string::npos);
   CHECK(!pcio::ReadPointCloud(Write("garbage.ply", "not a ply file\n"), error) && !error.empty());

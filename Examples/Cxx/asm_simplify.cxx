@@ -113,7 +113,8 @@ int main(int argc, char* argv[])
         asmFilter->SetRandomSeed(static_cast<int>(value));
       else
       {
-        std::cerr << "asm_simplify: bad option or value: " << arg << " " << argv[i] << "\n" << Usage;
+        std::cerr << "asm_simplify: bad option or value: " << arg << " " << argv[i] << "\n"
+                  << Usage;
         return 1;
       }
       continue;

@@ -84,8 +84,8 @@ inline void FourSquaredDistances(
     const __m128d dx = _mm_sub_pd(px, _mm_loadu_pd(x + h));
     const __m128d dy = _mm_sub_pd(py, _mm_loadu_pd(y + h));
     const __m128d dz = _mm_sub_pd(pz, _mm_loadu_pd(z + h));
-    _mm_storeu_pd(d + h,
-      _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz)));
+    _mm_storeu_pd(
+      d + h, _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz)));
   }
 #else
   for (int l = 0; l < 4; ++l)
@@ -334,7 +334,8 @@ void UpdateAssignment(Coordinates xyz, const CellGrid& grid, const CellNeighborT
   const Index count = samples.Size();
   const Index cells = grid.NumberOfCells();
   // Old slot -> new slot (-1: the sample left the set).
-  std::vector<Index> renumber(static_cast<std::size_t>(previousCount < 0 ? count : previousCount), -1);
+  std::vector<Index> renumber(
+    static_cast<std::size_t>(previousCount < 0 ? count : previousCount), -1);
   for (Index s = 0; s < count; ++s)
   {
     if (previous[s] >= 0)
@@ -392,7 +393,8 @@ void UpdateAssignment(Coordinates xyz, const CellGrid& grid, const CellNeighborT
           for (int k = 0; k < 27; ++k)
           {
             const Index nb = ring[k];
-            for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1]; ++s)
+            for (Index s = nb < 0 ? 0 : samples.Start[nb]; nb >= 0 && s < samples.Start[nb + 1];
+                 ++s)
             {
               consider(s);
             }

@@ -48,8 +48,8 @@ inline double AssignedDistance2(Coordinates xyz, const CellGrid& grid, const Sam
 /// owner cell changed (every sample with no old slot). Gives exactly what
 /// AssignToSamples gives (the nearest ring sample, ties: the lower index),
 /// but only the points whose sample moved or left are searched again; the
-/// others only compare with the moved samples of their ring. The points of a cell owning more than LargeCellBudget
-/// samples are searched again (with a k-d tree).
+/// others only compare with the moved samples of their ring. The points of a cell owning more than
+/// LargeCellBudget samples are searched again (with a k-d tree).
 VTKASMFILTERS_EXPORT void UpdateAssignment(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<Index>& previous,
   const std::vector<char>& moved, PointArray<SampleId>& assign, const Execution& execution,

@@ -134,7 +134,7 @@ struct BlockScratch
   std::vector<double> NearSq;
   std::vector<Index> Candidates;
   std::vector<double> CandidateSq;
-  std::vector<double> CandidateXyz; // side by side
+  std::vector<double> CandidateXyz;   // side by side
   std::vector<double> CandidateReach; // distance to the block's centroid
   KBest Best;
   std::vector<Index> Ids;

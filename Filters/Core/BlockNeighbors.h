@@ -60,12 +60,11 @@ using KNearestVisitMaker = std::function<KNearestVisit()>;
 /// `execution`'s threads, in no fixed order; each query is visited once,
 /// and what a visit receives does not depend on the thread count. k <= 0 or
 /// an empty surface: no visit.
-VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids,
-  const Neighbors& surface, int k, const KNearestVisit& visit, const Execution& execution = {});
+VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids, const Neighbors& surface,
+  int k, const KNearestVisit& visit, const Execution& execution = {});
 /// The same, each range of blocks with a visit of its own from `makeVisit`.
-VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids,
-  const Neighbors& surface, int k, const KNearestVisitMaker& makeVisit,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT void ForEachKNearest(const double* xyz, IdView ids, const Neighbors& surface,
+  int k, const KNearestVisitMaker& makeVisit, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

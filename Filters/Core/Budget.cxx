@@ -147,8 +147,8 @@ std::vector<Index> ApportionWithCoverage(
   if (total < static_cast<Index>(occupied.size()))
   {
     // Not enough for every cell: the cells of largest share.
-    std::stable_sort(occupied.begin(), occupied.end(),
-      [&](Index a, Index b) { return share[a] > share[b]; });
+    std::stable_sort(
+      occupied.begin(), occupied.end(), [&](Index a, Index b) { return share[a] > share[b]; });
     for (Index i = 0; i < std::max<Index>(0, total); ++i)
     {
       budget[occupied[i]] = 1;

@@ -30,7 +30,10 @@ struct Pending
 
   std::int64_t Length(int a) const { return this->Hi[a] - this->Lo[a]; }
   // The bin of index i along axis a, and the first index of bin b.
-  std::int64_t BinOf(int a, std::int64_t i) const { return (i - this->Lo[a]) * this->Bins[a] / this->Length(a); }
+  std::int64_t BinOf(int a, std::int64_t i) const
+  {
+    return (i - this->Lo[a]) * this->Bins[a] / this->Length(a);
+  }
   std::int64_t StartOf(int a, std::int64_t b) const
   {
     return this->Lo[a] + (b * this->Length(a) + this->Bins[a] - 1) / this->Bins[a];
@@ -116,14 +119,16 @@ CellPartition MakeCellPartition(const GridSpec& grid, int processes, Coordinates
     // 4 bytes per point of counts.)
     const auto n = static_cast<Index>(ids.size());
     const Index blocks = std::max<Index>(1,
-      std::min<Index>(selection::BlockCount(n, Index(1) << 16), n / (2 * static_cast<Index>(counts) + 1)));
+      std::min<Index>(
+        selection::BlockCount(n, Index(1) << 16), n / (2 * static_cast<Index>(counts) + 1)));
     std::vector<std::vector<long long>> partial(static_cast<std::size_t>(blocks));
     execution.Run(0, blocks, [&](Index first, Index last) {
       for (Index b = first; b < last; ++b)
       {
         std::vector<long long>& counted = partial[static_cast<std::size_t>(b)];
         counted.assign(counts, 0);
-        for (Index j = selection::BlockBegin(n, blocks, b); j < selection::BlockBegin(n, blocks, b + 1); ++j)
+        for (Index j = selection::BlockBegin(n, blocks, b);
+             j < selection::BlockBegin(n, blocks, b + 1); ++j)
         {
           double p[3];
           xyz.Get(ids[j], p);

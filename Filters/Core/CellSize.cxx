@@ -17,8 +17,7 @@ namespace
 // Non-empty cells of `spec`, each counted by min(1, points / minPoints): a
 // cell too sparse to get a sample of its own (a far outlier, a stray point)
 // counts for its share only.
-double EffectiveOccupiedCells(
-  Coordinates xyz, IdView ids, const GridSpec& spec, double minPoints)
+double EffectiveOccupiedCells(Coordinates xyz, IdView ids, const GridSpec& spec, double minPoints)
 {
   // Points per cell in a hash table, then the cells in increasing key order
   // (the order of the sum): no sort of one key per point.
@@ -105,8 +104,8 @@ double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   return SearchCellSize(bounds, targetCells, countOccupied, start);
 }
 
-PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
-  double totalPoints, double targetCells, const Execution& execution)
+PointArray<double> CellSizeSubsample(
+  Coordinates xyz, IdView ids, double totalPoints, double targetCells, const Execution& execution)
 {
   PointArray<double> subset;
   if (totalPoints < 200000.0 || !(targetCells > 1.0))
@@ -126,7 +125,8 @@ PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
     {
       std::vector<double>& mine = picked[k];
       const Index begin = BlockBegin(n, blocks, k), end = BlockBegin(n, blocks, k + 1);
-      mine.reserve(static_cast<std::size_t>(3.0 * static_cast<double>(end - begin) / stride * 1.25) + 24);
+      mine.reserve(
+        static_cast<std::size_t>(3.0 * static_cast<double>(end - begin) / stride * 1.25) + 24);
       for (Index i = begin; i < end; ++i)
       {
         double p[3];
@@ -147,7 +147,8 @@ PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index k = first; k < last; ++k)
     {
-      std::copy(picked[k].begin(), picked[k].end(), subset.begin() + static_cast<std::ptrdiff_t>(start[k]));
+      std::copy(
+        picked[k].begin(), picked[k].end(), subset.begin() + static_cast<std::ptrdiff_t>(start[k]));
       std::vector<double>().swap(picked[k]);
     }
   });
@@ -157,8 +158,8 @@ PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
 namespace
 {
 // The search on the subsample, as a start for the full search (0: none).
-double SubsampleStart(Coordinates xyz, IdView ids, const Bounds& bounds,
-  double targetCells, const Execution& execution)
+double SubsampleStart(
+  Coordinates xyz, IdView ids, const Bounds& bounds, double targetCells, const Execution& execution)
 {
   const PointArray<double> subset =
     CellSizeSubsample(xyz, ids, static_cast<double>(ids.size()), targetCells, execution);
@@ -167,9 +168,8 @@ double SubsampleStart(Coordinates xyz, IdView ids, const Bounds& bounds,
     return 0.0;
   }
   PointIds subsetIds(subset.size() / 3);
-  execution.Run(0, static_cast<Index>(subsetIds.size()), [&](Index b, Index e) {
-    std::iota(subsetIds.begin() + b, subsetIds.begin() + e, b);
-  });
+  execution.Run(0, static_cast<Index>(subsetIds.size()),
+    [&](Index b, Index e) { std::iota(subsetIds.begin() + b, subsetIds.begin() + e, b); });
   return SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
     return static_cast<double>(CountOccupiedCells(subset.data(), subsetIds, spec, execution));
   });
@@ -192,8 +192,8 @@ bool SparseCellsDominate(double effective, double raw)
 }
 
 // The outlier-robust search: each cell counted by min(1, points / minimum).
-double SearchIgnoringSparseCells(Coordinates xyz, IdView ids,
-  const Bounds& bounds, double targetCells)
+double SearchIgnoringSparseCells(
+  Coordinates xyz, IdView ids, const Bounds& bounds, double targetCells)
 {
   const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
   return SearchCellSize(bounds, targetCells,
@@ -201,19 +201,20 @@ double SearchIgnoringSparseCells(Coordinates xyz, IdView ids,
 }
 } // namespace
 
-double AutomaticCellSize(Coordinates xyz, IdView ids, const Bounds& bounds,
-  double targetCells, const Execution& execution)
+double AutomaticCellSize(
+  Coordinates xyz, IdView ids, const Bounds& bounds, double targetCells, const Execution& execution)
 {
   return BuildAutomaticCellGrid(xyz, ids, bounds, targetCells, execution).Spec.CellSize;
 }
 
-CellGrid BuildAutomaticCellGrid(Coordinates xyz, IdView ids,
-  const Bounds& bounds, double targetCells, const Execution& execution)
+CellGrid BuildAutomaticCellGrid(
+  Coordinates xyz, IdView ids, const Bounds& bounds, double targetCells, const Execution& execution)
 {
   const double maxExtent = bounds.MaxExtent();
   if (ids.empty() || !(maxExtent > 0.0))
   {
-    return BuildCellGrid(xyz, ids, GridSpec::Make(bounds, 0.0), execution); // one cell holds everything
+    return BuildCellGrid(
+      xyz, ids, GridSpec::Make(bounds, 0.0), execution); // one cell holds everything
   }
   if (targetCells <= 1.0)
   {
@@ -224,11 +225,14 @@ CellGrid BuildAutomaticCellGrid(Coordinates xyz, IdView ids,
   // the answer, and the grid is then finished from its marks.
   const double start = SubsampleStart(xyz, ids, bounds, targetCells, execution);
   CellMarks marks;
-  const double h = SearchCellSize(bounds, targetCells, [&](const GridSpec& spec) {
-    return static_cast<double>(marks.Mark(xyz, ids, spec, execution)
-        ? marks.Occupied(execution)
-        : CountOccupiedCells(xyz, ids, spec, execution));
-  }, start);
+  const double h = SearchCellSize(
+    bounds, targetCells,
+    [&](const GridSpec& spec) {
+      return static_cast<double>(marks.Mark(xyz, ids, spec, execution)
+          ? marks.Occupied(execution)
+          : CountOccupiedCells(xyz, ids, spec, execution));
+    },
+    start);
   const GridSpec found = GridSpec::Make(bounds, h);
   CellGrid grid = (marks.Valid && marks.Spec.CellSize == found.CellSize)
     ? FinishCellGrid(ids, marks, execution)

@@ -20,32 +20,30 @@ namespace asmcore
 /// (about 32 points per target cell), then from there on all points, usually
 /// in one or two passes. When sparse cells (far outliers) make up a fifth of the
 /// count, searches again counting each cell by its share of a sample.
-VTKASMFILTERS_EXPORT double AutomaticCellSize(Coordinates xyz, IdView ids,
-  const Bounds& bounds, double targetCells, const Execution& execution = {});
+VTKASMFILTERS_EXPORT double AutomaticCellSize(Coordinates xyz, IdView ids, const Bounds& bounds,
+  double targetCells, const Execution& execution = {});
 
 /// BuildCellGrid with the cell size of AutomaticCellSize, searched and built
 /// in one go (the grid of the search's last count is reused when it is the
 /// answer).
-VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(Coordinates xyz,
-  IdView ids, const Bounds& bounds, double targetCells,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(Coordinates xyz, IdView ids,
+  const Bounds& bounds, double targetCells, const Execution& execution = {});
 
 /// The same search with the occupancy counted by `countOccupied` (e.g. the
 /// distinct non-empty cells over all processes of a distributed run),
 /// starting from `start` (> 0; e.g. the search on CellSizeSubsample) or from
 /// the guess that the points sample a surface (0). Without the sparse-cell
 /// search of the overload above.
-VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targetCells,
-  bool empty, const std::function<double(const GridSpec&)>& countOccupied, double start = 0.0);
+VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
+  const std::function<double(const GridSpec&)>& countOccupied, double start = 0.0);
 
 /// The points the automatic cell size is first searched on (3 coordinates
 /// each): about one in max(4, totalPoints / targetCells / 32), picked by a
 /// hash of the point's coordinates, so that the same points are picked
 /// whatever the order or the partition of the cloud over processes; empty
 /// when totalPoints < 200000 (the search then runs on all points).
-VTKASMFILTERS_EXPORT PointArray<double> CellSizeSubsample(Coordinates xyz,
-  IdView ids, double totalPoints, double targetCells,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT PointArray<double> CellSizeSubsample(Coordinates xyz, IdView ids,
+  double totalPoints, double targetCells, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

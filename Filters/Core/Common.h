@@ -123,7 +123,8 @@ struct DefaultInitAllocator : std::allocator<T>
   {
     if constexpr (Unwritten)
     {
-      static_assert(std::is_trivially_copyable<U>::value && std::is_trivially_destructible<U>::value,
+      static_assert(
+        std::is_trivially_copyable<U>::value && std::is_trivially_destructible<U>::value,
         "only plain aggregates may be left unwritten");
       (void)p;
     }
@@ -151,7 +152,8 @@ using UnwrittenArray = std::vector<T, DefaultInitAllocator<T, true>>;
 /// Resizes `array` to n elements, the new ones set to `value` by a parallel
 /// loop (which first-touches their pages on every thread).
 template <typename T>
-void ResizeInParallel(UnwrittenArray<T>& array, std::size_t n, const T& value, const Execution& execution)
+void ResizeInParallel(
+  UnwrittenArray<T>& array, std::size_t n, const T& value, const Execution& execution)
 {
   const auto old = static_cast<Index>(array.size());
   array.resize(n);
@@ -267,7 +269,7 @@ struct Vec3Field
   const float* Floats = nullptr;
 
   Vec3Field() = default;
-  Vec3Field(std::nullptr_t) {} // NOLINT: implicit on purpose
+  Vec3Field(std::nullptr_t) {}     // NOLINT: implicit on purpose
   Vec3Field(const double* doubles) // NOLINT: implicit on purpose
     : Doubles(doubles)
   {
@@ -366,7 +368,8 @@ inline std::uint64_t CoordinateHash(const double* p)
 {
   std::uint64_t bits[3];
   std::memcpy(bits, p, sizeof(bits));
-  SplitMix64 mix(bits[0] ^ ((bits[1] << 21) | (bits[1] >> 43)) ^ ((bits[2] << 42) | (bits[2] >> 22)));
+  SplitMix64 mix(
+    bits[0] ^ ((bits[1] << 21) | (bits[1] >> 43)) ^ ((bits[2] << 42) | (bits[2] >> 22)));
   return mix.Next();
 }
 } // namespace asmcore

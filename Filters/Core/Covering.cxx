@@ -84,7 +84,8 @@ void RefineCovering(Coordinates xyz, const CellGrid& grid, const CellNeighborTab
           radius = std::max(radius, SquaredDistance(at(members[m]).data(), c.data()));
         }
         if (best < 0 ||
-          (NearlyEqual(radius, bestRadius) ? PositionBefore(c.data(), at(best).data()) : radius < bestRadius))
+          (NearlyEqual(radius, bestRadius) ? PositionBefore(c.data(), at(best).data())
+                                           : radius < bestRadius))
         {
           bestRadius = radius;
           best = candidate.second;

@@ -3,8 +3,8 @@
 
 #include "CellFrame.h"
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -168,9 +168,8 @@ CurvatureEstimate EstimateCurvatureAt(const double* xyz, const Index* neighbors,
   return estimate;
 }
 
-std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
-  const Neighbors& tree, const double* queries, Index nQueries, const double* orientNormals, int k,
-  const Execution& exec)
+std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids, const Neighbors& tree,
+  const double* queries, Index nQueries, const double* orientNormals, int k, const Execution& exec)
 {
   std::vector<CurvatureEstimate> estimates(static_cast<std::size_t>(std::max<Index>(nQueries, 0)));
   if (nQueries <= 0)

@@ -58,11 +58,11 @@ constexpr int DefaultCurvatureNeighbors = 20;
 /// Curvature at one query position.
 struct VTKASMFILTERS_EXPORT CurvatureEstimate
 {
-  double MeanCurvature = 0.0;    ///< see the sign convention above; NaN: no estimate
-  double SurfaceVariation = 0.0; ///< lambda2 / (lambda0 + lambda1 + lambda2); NaN: no estimate
+  double MeanCurvature = 0.0;     ///< see the sign convention above; NaN: no estimate
+  double SurfaceVariation = 0.0;  ///< lambda2 / (lambda0 + lambda1 + lambda2); NaN: no estimate
   double Normal[3] = { 0, 0, 0 }; ///< unit oriented PCA normal n; 0 0 0: no estimate
-  int NumberOfNeighbors = 0;     ///< size of the neighbourhood used
-  bool QuadricFit = false;       ///< false: plane fallback (MeanCurvature 0) or no estimate
+  int NumberOfNeighbors = 0;      ///< size of the neighbourhood used
+  bool QuadricFit = false;        ///< false: plane fallback (MeanCurvature 0) or no estimate
 };
 
 /// The estimate for one position p, given its neighbourhood (ids into xyz)
@@ -84,9 +84,9 @@ VTKASMFILTERS_EXPORT CurvatureEstimate EstimateCurvatureAt(const double* xyz,
 /// in 20 batches; if exec.Report asks to abort, returns an empty vector.
 /// A non-finite query, or an empty tree, gives a NaN estimate.
 /// Cost: O(nQueries (log N + k log k + k)) after the tree.
-VTKASMFILTERS_EXPORT std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz,
-  IdView ids, const Neighbors& tree, const double* queries, Index nQueries,
-  const double* orientNormals, int k, const Execution& exec);
+VTKASMFILTERS_EXPORT std::vector<CurvatureEstimate> EstimateCurvature(Coordinates xyz, IdView ids,
+  const Neighbors& tree, const double* queries, Index nQueries, const double* orientNormals, int k,
+  const Execution& exec);
 } // namespace asmcore
 
 #endif

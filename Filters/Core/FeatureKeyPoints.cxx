@@ -125,7 +125,8 @@ std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz, const CellGrid& grid,
   {
     return keys;
   }
-  auto consider = [&](Index local, const Eigen::Vector3d& direction, const Eigen::Vector3d* centroid) {
+  auto consider = [&](Index local, const Eigen::Vector3d& direction,
+                    const Eigen::Vector3d* centroid) {
     const Index id = points[local];
     for (const FeatureKey& k : keys)
     {

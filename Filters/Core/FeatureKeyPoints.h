@@ -31,7 +31,7 @@ namespace asmcore
 /// One key point of a cell.
 struct VTKASMFILTERS_EXPORT FeatureKey
 {
-  Index Point = -1;                ///< the extreme input point (global id)
+  Index Point = -1;                 ///< the extreme input point (global id)
   double Position[3] = { 0, 0, 0 }; ///< where the key sample goes
   double Prominence = 0.0; ///< d.p - mean of d.x over the points within the radius (length)
   double Error = 0.0;      ///< |Position - extreme point|
@@ -40,11 +40,11 @@ struct VTKASMFILTERS_EXPORT FeatureKey
 /// Options of the key point search of the feature-preserving mode.
 struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 {
-  KeyPointRule Rule;              ///< bands, link distance and Eq. 5 for the +-v2 candidates
-  bool Validate = true;           ///< Lemma 2 across cell borders
-  double Radius = 0.0;            ///< Lemma 2 radius (length, clamped to one cell edge)
-  double MinimumProminence = 0.0; ///< a validated key stands out by more than this (length)
-  bool InPlaneExtremes = true;    ///< +-v0 and +-v1 extremes are candidates too
+  KeyPointRule Rule;                 ///< bands, link distance and Eq. 5 for the +-v2 candidates
+  bool Validate = true;              ///< Lemma 2 across cell borders
+  double Radius = 0.0;               ///< Lemma 2 radius (length, clamped to one cell edge)
+  double MinimumProminence = 0.0;    ///< a validated key stands out by more than this (length)
+  bool InPlaneExtremes = true;       ///< +-v0 and +-v1 extremes are candidates too
   bool ExtremeRepresentative = true; ///< a key sample is its extreme point, not the band centroid
   /// Cells of fewer than 3 points (no frame): a point that is the extreme
   /// away from the centroid of its neighbours within Radius is a key (with
@@ -54,8 +54,8 @@ struct VTKASMFILTERS_EXPORT FeatureKeyOptions
 
 /// The key points of cell c, ordered by decreasing prominence (ties: point
 /// id). `q` is scratch space (the cell's points in its PCA frame).
-VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz,
-  const CellGrid& grid, const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
+VTKASMFILTERS_EXPORT std::vector<FeatureKey> FindFeatureKeys(Coordinates xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const CellFrame& frame, Index c,
   const FeatureKeyOptions& options, LocalPoints& q);
 
 /// A tip alone in a cell too sparse for a frame: whether input point `id` of

@@ -99,8 +99,7 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
       snapped[s] = parameters.InputPointSamples && !parameters.Snap && !samples.Fixed[s] &&
         memberStart[s + 1] - memberStart[s] > 1;
     }
-    BoundSnappedHoles(
-      P, memberStart, members.data(), snapped, samples.Position.data(), execution);
+    BoundSnappedHoles(P, memberStart, members.data(), snapped, samples.Position.data(), execution);
   }
   execution.Run(0, static_cast<Index>(members.size()), [&](Index b, Index e) {
     for (Index j = b; j < e; ++j)
@@ -162,8 +161,9 @@ void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,
         }
       }
       Eigen::Vector3d normal = surface.Normal;
-      const Eigen::Vector3d reference =
-        normalSum.squaredNorm() > 0.0 ? normalSum : Eigen::Vector3d(surface.Centroid - cloudCentroid);
+      const Eigen::Vector3d reference = normalSum.squaredNorm() > 0.0
+        ? normalSum
+        : Eigen::Vector3d(surface.Centroid - cloudCentroid);
       if (normal.dot(reference) < 0.0)
       {
         normal = -normal;

@@ -22,7 +22,7 @@ namespace feature
 // Per-sample facts besides the position.
 struct VTKASMFILTERS_EXPORT SampleInfo
 {
-  Index Owner = -1;     // grid cell whose frame gives the normal
+  Index Owner = -1; // grid cell whose frame gives the normal
   /// Key samples: the extreme input point (a slot); from the output's first
   /// step on, every sample's representative (an input point id).
   Index Point = -1;
@@ -53,8 +53,8 @@ VTKASMFILTERS_EXPORT void PlaceOutputSamples(Coordinates P, const CellGrid& grid
   SampleSet& samples, std::vector<SampleInfo>& info, PointArray<Index>& members,
   std::vector<std::pair<Index, Index>>& duplicates, const Execution& execution);
 
-/// Output, step 2 (result.Members holds input point ids): result.Samples from the samples' positions, members and
-/// representatives, each with its owner cell's surface: the normal oriented
+/// Output, step 2 (result.Members holds input point ids): result.Samples from the samples'
+/// positions, members and representatives, each with its owner cell's surface: the normal oriented
 /// along the members' input normals (else away from the cloud's centroid),
 /// the surface variation, the key flag and error.
 VTKASMFILTERS_EXPORT void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,
@@ -65,8 +65,8 @@ VTKASMFILTERS_EXPORT void LayOutSamples(Coordinates xyz, IdView ids, NormalField
 /// Distributed runs: only the samples of the cells this process outputs (its
 /// own, SimplifyParameters::OutputCell), with their members; the others were
 /// computed as context.
-VTKASMFILTERS_EXPORT void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
-  const CellGrid& grid, const SimplifyParameters& parameters);
+VTKASMFILTERS_EXPORT void KeepOutputCells(SimplifyResult& result,
+  const std::vector<SampleInfo>& info, const CellGrid& grid, const SimplifyParameters& parameters);
 } // namespace feature
 } // namespace asmcore
 

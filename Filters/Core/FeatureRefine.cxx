@@ -76,11 +76,13 @@ bool RefineAcrossCells(Coordinates P, const CellGrid& grid, const CellNeighborTa
   {
     AssignToSamples(P, grid, neighbors, samples, assign, execution);
     std::vector<Index> order;
-    const auto maxMoves = static_cast<Index>(std::llround(
-      std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) * static_cast<double>(totalSamples)));
+    const auto maxMoves =
+      static_cast<Index>(std::llround(std::max(0.0, std::min(1.0, parameters.HoleFillFraction)) *
+        static_cast<double>(totalSamples)));
     std::vector<char> moved;
     const Index before = count;
-    if (FillHoles(P, grid, neighbors, assign, maxMoves, samples, order, moved, execution, 32, scope) == 0)
+    if (FillHoles(
+          P, grid, neighbors, assign, maxMoves, samples, order, moved, execution, 32, scope) == 0)
     {
       break;
     }

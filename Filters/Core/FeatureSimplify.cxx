@@ -146,8 +146,8 @@ int CollectiveSumsOf(const SimplifyParameters& parameters)
     : std::max(0, parameters.FinalLloydIterations);
 }
 
-SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
-  NormalField normals, const SimplifyParameters& parameters, const Execution& execution)
+SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids, NormalField normals,
+  const SimplifyParameters& parameters, const Execution& execution)
 {
   SimplifyResult result;
   const Index total = static_cast<Index>(ids.size());
@@ -276,7 +276,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     budget.resize(static_cast<std::size_t>(cells));
     for (Index c = 0; c < cells; ++c)
     {
-      budget[c] = std::min(grid.CellSizeOf(c), std::max<Index>(0, parameters.CellBudget(grid.CellKey[c])));
+      budget[c] =
+        std::min(grid.CellSizeOf(c), std::max<Index>(0, parameters.CellBudget(grid.CellKey[c])));
     }
   }
   else
@@ -310,7 +311,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
     {
       const Index first = samples.Start[c];
       // (ReserveFreeSample: a cell of two or more samples keeps a free one.)
-      const Index keyBudget = parameters.ReserveFreeSample && budget[c] > 1 ? budget[c] - 1 : budget[c];
+      const Index keyBudget =
+        parameters.ReserveFreeSample && budget[c] > 1 ? budget[c] - 1 : budget[c];
       const Index keyCount = std::min<Index>(keyBudget, static_cast<Index>(keys[c].size()));
       exclude.clear();
       for (Index s = first; s < samples.Start[c + 1]; ++s)
@@ -376,8 +378,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   // (Small per-block counts, an eighth of an Index per point: at most two
   // blocks at 5 %.)
   GroupBy(
-    total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; },
-    memberStart, result.Members, execution, 8, 1 << 16, 0.125);
+    total, count, [&](Index i) { return assign[i]; }, [](Index i) { return i; }, memberStart,
+    result.Members, execution, 8, 1 << 16, 0.125);
   PointArray<SampleId>().swap(assign);
   std::vector<Index>().swap(clusterSize); // (the groups' sizes, from memberStart)
   if (abort(0.9))
@@ -396,7 +398,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
   P = Coordinates();
 
   // Step 2: the samples.
-  LayOutSamples(xyz, ids, normals, surfaces, info, samples, memberStart, parameters, result, execution);
+  LayOutSamples(
+    xyz, ids, normals, surfaces, info, samples, memberStart, parameters, result, execution);
   if (parameters.OutputCell)
   {
     KeepOutputCells(result, info, grid, parameters);

@@ -102,9 +102,8 @@ VTKASMFILTERS_EXPORT int CollectiveSumsOf(const SimplifyParameters& parameters);
 /// Simplify(): exactly min(N_s, ids.size()) samples, deterministic whatever
 /// the thread count, Members partitioning the input points among the samples.
 /// At most 2^31 - 1 samples (SampleId); more give an empty, Aborted result.
-VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(Coordinates xyz,
-  IdView ids, NormalField normals, const SimplifyParameters& parameters,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids,
+  NormalField normals, const SimplifyParameters& parameters, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

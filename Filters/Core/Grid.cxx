@@ -44,7 +44,6 @@ double Bounds::MaxExtent() const
 
 using namespace occupancy;
 
-
 Bounds ComputeBounds(Coordinates xyz, IdView ids, const Execution& execution)
 {
   Bounds b;
@@ -91,8 +90,7 @@ Bounds ComputeBounds(Coordinates xyz, IdView ids, const Execution& execution)
   return b;
 }
 
-void ComputeCentroid(
-  Coordinates xyz, IdView ids, double centroid[3], const Execution& execution)
+void ComputeCentroid(Coordinates xyz, IdView ids, double centroid[3], const Execution& execution)
 {
   centroid[0] = centroid[1] = centroid[2] = 0.0;
   const Index n = static_cast<Index>(ids.size());
@@ -170,8 +168,7 @@ namespace occupancy
 // stable: in each cell, points keep the order of `ids`, then ties by id.
 // Fills grid.CellStart and grid.Order; grid.CellKey is set.
 template <typename CellNumber>
-void SortIntoCells(IdView ids, const CellNumber* cell, CellGrid& grid,
-  const Execution& execution)
+void SortIntoCells(IdView ids, const CellNumber* cell, CellGrid& grid, const Execution& execution)
 {
   const Index n = static_cast<Index>(ids.size());
   const Index cells = static_cast<Index>(grid.CellKey.size());
@@ -197,7 +194,8 @@ void SortIntoCells(IdView ids, const CellNumber* cell, CellGrid& grid,
     execution.Run(0, cells, [&](Index b, Index e) {
       for (Index c = b; c < e; ++c)
       {
-        std::sort(grid.Order.begin() + grid.CellStart[c], grid.Order.begin() + grid.CellStart[c + 1]);
+        std::sort(
+          grid.Order.begin() + grid.CellStart[c], grid.Order.begin() + grid.CellStart[c + 1]);
       }
     });
   }
@@ -224,7 +222,8 @@ CellGrid FinishCellGrid(IdView ids, CellMarks& marks, const Execution& execution
       Index c = rank[w];
       for (std::uint64_t bits = bitmap.Word(w); bits; bits &= bits - 1)
       {
-        grid.CellKey[c++] = bitmap.KeyOfLinear(64 * static_cast<std::uint64_t>(w) + TrailingZeros(bits));
+        grid.CellKey[c++] =
+          bitmap.KeyOfLinear(64 * static_cast<std::uint64_t>(w) + TrailingZeros(bits));
       }
     }
   });
@@ -233,7 +232,8 @@ CellGrid FinishCellGrid(IdView ids, CellMarks& marks, const Execution& execution
     {
       const std::uint64_t lin = cell[i];
       const std::uint64_t below = (std::uint64_t(1) << (lin & 63)) - 1;
-      cell[i] = static_cast<std::uint32_t>(rank[lin >> 6] + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below));
+      cell[i] = static_cast<std::uint32_t>(
+        rank[lin >> 6] + PopCount(bitmap.Word(static_cast<Index>(lin >> 6)) & below));
     }
   });
   SortIntoCells(ids, cell, grid, execution);

@@ -38,8 +38,8 @@ VTKASMFILTERS_EXPORT Bounds ComputeBounds(
 
 /// Centroid of the points xyz[3*id] for id in ids (0 for none), summed in
 /// fixed blocks: the same value whatever the thread count.
-VTKASMFILTERS_EXPORT void ComputeCentroid(Coordinates xyz, IdView ids,
-  double centroid[3], const Execution& execution = {});
+VTKASMFILTERS_EXPORT void ComputeCentroid(
+  Coordinates xyz, IdView ids, double centroid[3], const Execution& execution = {});
 
 /// A uniform grid: origin, cubic cell edge, and the number of cells per axis.
 struct VTKASMFILTERS_EXPORT GridSpec
@@ -100,8 +100,8 @@ inline std::uint64_t FromDoubles(const double* in)
 struct VTKASMFILTERS_EXPORT CellGrid
 {
   GridSpec Spec;
-  PointArray<Index> Order;           ///< point ids sorted by (cell key, id)
-  std::vector<Index> CellStart;      ///< cell c holds Order[CellStart[c], CellStart[c+1])
+  PointArray<Index> Order;            ///< point ids sorted by (cell key, id)
+  std::vector<Index> CellStart;       ///< cell c holds Order[CellStart[c], CellStart[c+1])
   std::vector<std::uint64_t> CellKey; ///< key of each non-empty cell, ascending
   /// True when the points were copied in cell order (the default mode): slot
   /// i holds point i, and Order is empty (8 bytes per point less).
@@ -141,16 +141,16 @@ private:
 };
 
 /// Hash the points into the grid `spec` (deterministic: ties by point id).
-VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(Coordinates xyz, IdView ids,
-  const GridSpec& spec, const Execution& execution = {});
+VTKASMFILTERS_EXPORT CellGrid BuildCellGrid(
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution = {});
 
 /// Number of non-empty cells of `spec`.
-VTKASMFILTERS_EXPORT Index CountOccupiedCells(Coordinates xyz, IdView ids,
-  const GridSpec& spec, const Execution& execution = {});
+VTKASMFILTERS_EXPORT Index CountOccupiedCells(
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution = {});
 
 /// The keys of the non-empty cells of `spec`, ascending, each once.
-VTKASMFILTERS_EXPORT std::vector<std::uint64_t> OccupiedCellKeys(Coordinates xyz, IdView ids,
-  const GridSpec& spec, const Execution& execution = {});
+VTKASMFILTERS_EXPORT std::vector<std::uint64_t> OccupiedCellKeys(
+  Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution = {});
 
 } // namespace asmcore
 

@@ -111,7 +111,8 @@ public:
   {
     const double cells = static_cast<double>(spec.Dims[0]) * static_cast<double>(spec.Dims[1]) *
       static_cast<double>(spec.Dims[2]);
-    const double limit = std::max(double(std::uint64_t(1) << 26), 16.0 * static_cast<double>(points));
+    const double limit =
+      std::max(double(std::uint64_t(1) << 26), 16.0 * static_cast<double>(points));
     if (!(cells <= limit))
     {
       return false;
@@ -309,8 +310,8 @@ inline void InsertKeys(Coordinates xyz, IdView ids, const GridSpec& spec, KeyTab
 // Marks the cells of the points in the bitmap; also stores each point's
 // linear cell number in `linear` when not null (the bitmap then has fewer
 // than 2^32 bits).
-inline void MarkCells(Coordinates xyz, IdView ids, const GridSpec& spec,
-  OccupancyBitmap& bitmap, std::uint32_t* linear, const Execution& execution)
+inline void MarkCells(Coordinates xyz, IdView ids, const GridSpec& spec, OccupancyBitmap& bitmap,
+  std::uint32_t* linear, const Execution& execution)
 {
   execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
     const FastCellOf cellOf(spec); // a local copy: registers, no aliasing with the stores
@@ -350,8 +351,7 @@ struct CellMarks
   bool Valid = false;
 
   // False (and nothing marked) when the grid is too large for a bitmap.
-  bool Mark(Coordinates xyz, IdView ids, const GridSpec& spec,
-    const Execution& execution)
+  bool Mark(Coordinates xyz, IdView ids, const GridSpec& spec, const Execution& execution)
   {
     this->Valid = false;
     const Index n = static_cast<Index>(ids.size());

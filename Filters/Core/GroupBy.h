@@ -25,7 +25,8 @@ void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Inde
   Output& out, const Execution& execution, Index maxBlocks = 8, Index minBlock = 1 << 16,
   double scratchPerItem = 0.5)
 {
-  auto blockBegin = [n](Index blocks, Index b) { return n / blocks * b + (n % blocks) * b / blocks; };
+  auto blockBegin = [n](
+                      Index blocks, Index b) { return n / blocks * b + (n % blocks) * b / blocks; };
   Index blocks = std::max<Index>(1, std::min<Index>(maxBlocks, n / std::max<Index>(1, minBlock)));
   while (blocks > 1 && static_cast<double>(blocks * keys) > scratchPerItem * static_cast<double>(n))
   {
@@ -100,7 +101,9 @@ void GroupBy(Index n, Index keys, KeyOf&& key, ValueOf&& value, std::vector<Inde
     }
   });
   out.resize(static_cast<std::size_t>(running));
-  eachItem([&](Index b, Index i, Index k) { out[static_cast<std::size_t>(offset[b * keys + k]++)] = value(i); });
+  eachItem([&](Index b, Index i, Index k) {
+    out[static_cast<std::size_t>(offset[b * keys + k]++)] = value(i);
+  });
 }
 } // namespace asmcore
 

@@ -45,7 +45,8 @@ PointRanking RankPoints(const Context& context, Index farLook)
   const CellGrid& grid = context.Grid;
   const Index count = samples.Size();
   const Index points = static_cast<Index>(context.Assign.size());
-  std::unique_ptr<std::atomic<double>[]> spread(new std::atomic<double>[static_cast<std::size_t>(count)]);
+  std::unique_ptr<std::atomic<double>[]> spread(
+    new std::atomic<double>[static_cast<std::size_t>(count)]);
   context.Exec.Run(0, count, [&](Index b, Index e) {
     for (Index s = b; s < e; ++s)
     {
@@ -59,8 +60,8 @@ PointRanking RankPoints(const Context& context, Index farLook)
     context.Exec.Run(0, grid.NumberOfCells(), [&](Index b, Index e) {
       for (Index c = b; c < e; ++c)
       {
-        std::fill(rankedSlot.begin() + grid.CellStart[c], rankedSlot.begin() + grid.CellStart[c + 1],
-          static_cast<char>(context.Ranks(c) ? 1 : 0));
+        std::fill(rankedSlot.begin() + grid.CellStart[c],
+          rankedSlot.begin() + grid.CellStart[c + 1], static_cast<char>(context.Ranks(c) ? 1 : 0));
       }
     });
   }
@@ -69,7 +70,8 @@ PointRanking RankPoints(const Context& context, Index farLook)
     const Index s = context.Assign[i];
     if (s < 0)
     {
-      return rankedSlot.empty() || rankedSlot[i] ? std::numeric_limits<double>::infinity() : -Infinity;
+      return rankedSlot.empty() || rankedSlot[i] ? std::numeric_limits<double>::infinity()
+                                                 : -Infinity;
     }
     const double d = context.Distance2(i);
     double current = spread[s].load(std::memory_order_relaxed);
@@ -105,7 +107,8 @@ PointRanking RankPoints(const Context& context, Index farLook)
 // first (small clusters in dense areas), a few per move. The spread of a
 // sample is the largest squared distance of its members (infinite for fixed
 // samples and samples without members, which are never candidates).
-std::vector<Candidate> RankCandidates(const Context& context, std::vector<double> negated, Index look)
+std::vector<Candidate> RankCandidates(
+  const Context& context, std::vector<double> negated, Index look)
 {
   const SampleSet& samples = context.Samples;
   const bool distributed = context.Distributed();
@@ -118,7 +121,8 @@ std::vector<Candidate> RankCandidates(const Context& context, std::vector<double
         {
           if (!context.Ranks(c))
           {
-            std::fill(negated.begin() + samples.Start[c], negated.begin() + samples.Start[c + 1], -Infinity);
+            std::fill(negated.begin() + samples.Start[c], negated.begin() + samples.Start[c + 1],
+              -Infinity);
           }
         }
       });
@@ -130,8 +134,8 @@ std::vector<Candidate> RankCandidates(const Context& context, std::vector<double
       {
         // (The key only when it travels: a serial run names its moves at the end.)
         const Index s = ranked[k];
-        candidates[k] = { negated[s], distributed ? context.KeyOf(s, CellOfSample(samples, s)) : SampleKey(),
-          s, s };
+        candidates[k] = { negated[s],
+          distributed ? context.KeyOf(s, CellOfSample(samples, s)) : SampleKey(), s, s };
       }
     });
   }
@@ -148,9 +152,12 @@ std::vector<Candidate> RankCandidates(const Context& context, std::vector<double
   }
   candidates = GatherRanked<Candidate>(
     context.Scope.Gather, values, 4,
-    [](const double* in) { return Candidate{ in[0], GetKey(in + 1), -1, -1 }; },
+    [](const double* in) {
+      return Candidate{ in[0], GetKey(in + 1), -1, -1 };
+    },
     [](const Candidate& a, const Candidate& b) {
-      return a.NegatedSpread > b.NegatedSpread || (a.NegatedSpread == b.NegatedSpread && a.Key < b.Key);
+      return a.NegatedSpread > b.NegatedSpread ||
+        (a.NegatedSpread == b.NegatedSpread && a.Key < b.Key);
     },
     look);
   for (Candidate& c : candidates)
@@ -166,7 +173,8 @@ std::vector<Candidate> RankCandidates(const Context& context, std::vector<double
 // its own gap distance of a gap taken already, in its cell's ring, belongs
 // to that gap). A distributed run ranks its own cells' points, and the best
 // of every process's make the list.
-std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& farthest, Index maxMoves)
+std::vector<Gap> FindGaps(
+  const Context& context, const std::vector<Index>& farthest, Index maxMoves)
 {
   const CellGrid& grid = context.Grid;
   const bool distributed = context.Distributed();
@@ -195,9 +203,10 @@ std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& fart
   std::vector<Gap> gaps;
   std::vector<Index> chain;
   const std::size_t farCount = distributed ? far.size() : farthest.size();
-  const std::size_t most = std::min(farCount, static_cast<std::size_t>(std::max<Index>(0, maxMoves)));
+  const std::size_t most =
+    std::min(farCount, static_cast<std::size_t>(std::max<Index>(0, maxMoves)));
   KeyTable head(most); // the last gap taken in each cell (the others chained behind it)
-  gaps.reserve(most); // (reserved: no chain of small blocks left behind in the heap)
+  gaps.reserve(most);  // (reserved: no chain of small blocks left behind in the heap)
   chain.reserve(most);
   for (std::size_t j = 0; j < farCount && static_cast<Index>(gaps.size()) < maxMoves; ++j)
   {
@@ -225,7 +234,8 @@ std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& fart
 
 Index FillHoles(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const PointArray<SampleId>& assign, Index maxMoves, SampleSet& samples, std::vector<Index>& order,
-  std::vector<char>& moved, const Execution& execution, Index firstBatch, const HoleFillScope& scope)
+  std::vector<char>& moved, const Execution& execution, Index firstBatch,
+  const HoleFillScope& scope)
 {
   const Index count = samples.Size();
   const Index total = scope.TotalSamples >= 0 ? scope.TotalSamples : count;
@@ -239,8 +249,8 @@ Index FillHoles(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& 
   const holes::Context context{ xyz, grid, neighbors, assign, samples, execution, scope };
   // (Both rankings read the assignment's distances: before any sample moves.)
   holes::PointRanking ranking = holes::RankPoints(context, holes::FarLook(maxMoves));
-  const std::vector<holes::Candidate> candidates =
-    holes::RankCandidates(context, std::move(ranking.NegatedSpread), std::min<Index>(total, 8 * maxMoves));
+  const std::vector<holes::Candidate> candidates = holes::RankCandidates(
+    context, std::move(ranking.NegatedSpread), std::min<Index>(total, 8 * maxMoves));
   const std::vector<holes::Gap> gaps = holes::FindGaps(context, ranking.Farthest, maxMoves);
   const std::vector<holes::Move> made = holes::MatchToGaps(context, candidates, gaps, firstBatch);
   if (made.empty())

@@ -54,9 +54,8 @@ struct VTKASMFILTERS_EXPORT HoleFillScope
 /// on it, nor on how a scope splits the cells.
 VTKASMFILTERS_EXPORT Index FillHoles(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, Index maxMoves,
-  SampleSet& samples,
-  std::vector<Index>& order, std::vector<char>& moved, const Execution& execution,
-  Index firstBatch = 32, const HoleFillScope& scope = {});
+  SampleSet& samples, std::vector<Index>& order, std::vector<char>& moved,
+  const Execution& execution, Index firstBatch = 32, const HoleFillScope& scope = {});
 } // namespace asmcore
 
 #endif

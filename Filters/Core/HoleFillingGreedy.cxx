@@ -37,7 +37,8 @@ public:
     , HeirCount(static_cast<std::size_t>(this->Count), 0)
     , BatchOf(static_cast<std::size_t>(this->Count), -1)
     , Blocked(static_cast<std::size_t>(this->Count), 0)
-    , TouchedCell(context.Distributed() ? 0 : static_cast<std::size_t>(context.Grid.NumberOfCells()), -1)
+    , TouchedCell(
+        context.Distributed() ? 0 : static_cast<std::size_t>(context.Grid.NumberOfCells()), -1)
   {
     this->GroupMembers();
   }
@@ -71,7 +72,7 @@ private:
   std::vector<Index> HeirStart;
   std::vector<Index> HeirCount;
   std::vector<std::vector<Index>> Scratch; // heirs per entry of `which`, reused
-  std::vector<Index> BatchOf; // the moves made before its cost was computed
+  std::vector<Index> BatchOf;              // the moves made before its cost was computed
   std::vector<char> Blocked;
   // The last move out of each cell's ring: by cell here (serial), by cell
   // key for cells held anywhere (distributed).
@@ -162,7 +163,8 @@ double GapMatching::RemovalCost(Index k, double limit, std::vector<Index>& heirs
 std::uint32_t GapMatching::MemberCells(Index k) const
 {
   const CellGrid& grid = this->Ctx.Grid;
-  const CellRef* ring = this->Ctx.Neighbors.Of(CellOfSample(this->Ctx.Samples, this->Candidates[k].Local));
+  const CellRef* ring =
+    this->Ctx.Neighbors.Of(CellOfSample(this->Ctx.Samples, this->Candidates[k].Local));
   std::uint32_t bits = 0;
   Index cell = -1;
   for (Index m = this->Start[k]; m < this->Start[k + 1]; ++m)
@@ -246,9 +248,9 @@ void GapMatching::GatherCosts(const std::vector<Index>& which)
   {
     if (this->Candidates[k].Local >= 0)
     {
-      values.insert(values.end(), { static_cast<double>(k), this->Cost[k],
-                                    static_cast<double>(this->RingBits[k]),
-                                    static_cast<double>(this->HeirCount[k]) });
+      values.insert(values.end(),
+        { static_cast<double>(k), this->Cost[k], static_cast<double>(this->RingBits[k]),
+          static_cast<double>(this->HeirCount[k]) });
       for (const Index* h = this->HeirsBegin(k); h != this->HeirsEnd(k); ++h)
       {
         values.push_back(static_cast<double>(*h));
@@ -278,7 +280,8 @@ bool GapMatching::IsCurrent(Index k) const
 {
   if (!this->Ctx.Distributed())
   {
-    const CellRef* ring = this->Ctx.Neighbors.Of(CellOfSample(this->Ctx.Samples, this->Candidates[k].Local));
+    const CellRef* ring =
+      this->Ctx.Neighbors.Of(CellOfSample(this->Ctx.Samples, this->Candidates[k].Local));
     for (int r = 0; r < 27; ++r)
     {
       if ((this->RingBits[k] & (std::uint32_t(1) << r)) && ring[r] >= 0 &&
@@ -321,7 +324,8 @@ void GapMatching::MarkTouched(Index k)
     }
     return;
   }
-  for (const Index nb : this->Ctx.Neighbors.RingOf(CellOfSample(this->Ctx.Samples, this->Candidates[k].Held)))
+  for (const Index nb :
+    this->Ctx.Neighbors.RingOf(CellOfSample(this->Ctx.Samples, this->Candidates[k].Held)))
   {
     if (nb >= 0)
     {
@@ -406,7 +410,8 @@ std::vector<Move> GapMatching::Run(const std::vector<Gap>& gaps, Index firstBatc
       }
       this->MarkTouched(k);
       // (A serial run names its moves here: its candidates carry no key.)
-      made.emplace_back(distributed ? this->Candidates[k].Key : this->Ctx.KeyOf(s, CellOfSample(samples, s)),
+      made.emplace_back(
+        distributed ? this->Candidates[k].Key : this->Ctx.KeyOf(s, CellOfSample(samples, s)),
         static_cast<Index>(gap));
       ++this->Moves;
       break;

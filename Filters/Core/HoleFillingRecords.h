@@ -90,7 +90,10 @@ inline void RingKeys(const GridSpec& spec, std::uint64_t key, std::uint64_t out[
 class KeyTable
 {
 public:
-  explicit KeyTable(std::size_t expected = 0) { this->Slots.assign(SizeFor(expected), { NoCell, -1 }); }
+  explicit KeyTable(std::size_t expected = 0)
+  {
+    this->Slots.assign(SizeFor(expected), { NoCell, -1 });
+  }
   Index Find(std::uint64_t key) const { return this->Slots[this->SlotOf(key)].second; }
   void Set(std::uint64_t key, Index value)
   {

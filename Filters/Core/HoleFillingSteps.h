@@ -68,7 +68,8 @@ struct Context
   Index CellOfSlot(Index slot) const
   {
     const auto& start = this->Grid.CellStart;
-    return static_cast<Index>(std::upper_bound(start.begin(), start.end(), slot) - start.begin() - 1);
+    return static_cast<Index>(
+      std::upper_bound(start.begin(), start.end(), slot) - start.begin() - 1);
   }
 
   // A point slot's squared distance to its sample, as the assignment
@@ -102,12 +103,14 @@ PointRanking RankPoints(const Context& context, Index farLook);
 // spread first (ties: the lower key), from `negated` (PointRanking). A
 // distributed run ranks its own cells' samples and the best of every
 // process's make the list.
-std::vector<Candidate> RankCandidates(const Context& context, std::vector<double> negated, Index look);
+std::vector<Candidate> RankCandidates(
+  const Context& context, std::vector<double> negated, Index look);
 
 // At most `maxMoves` gaps of the whole cloud, largest first, from this
 // run's `farthest` points (PointRanking; a distributed run gathers every
 // process's): those not within their own gap distance of a larger gap.
-std::vector<Gap> FindGaps(const Context& context, const std::vector<Index>& farthest, Index maxMoves);
+std::vector<Gap> FindGaps(
+  const Context& context, const std::vector<Index>& farthest, Index maxMoves);
 
 // A move: the sample that moved, and the gap it filled (an index of gaps).
 using Move = std::pair<SampleKey, Index>;

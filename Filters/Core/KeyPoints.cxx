@@ -111,8 +111,8 @@ KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options
   return result;
 }
 
-KeyClusters FindCellKeyClusters(Coordinates xyz, IdView points, const CellFrame& frame,
-  const KeyPointRule& rule, LocalPoints& q)
+KeyClusters FindCellKeyClusters(
+  Coordinates xyz, IdView points, const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q)
 {
   const auto n = static_cast<Index>(points.size());
   q.resize(static_cast<std::size_t>(n));

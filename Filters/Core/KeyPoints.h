@@ -50,7 +50,8 @@ struct VTKASMFILTERS_EXPORT KeyClusters
 /// each key point. Each step shrinks alpha by at least 10 %, and the last of
 /// at most 100 passes uses alpha = 0, where a band holds only the points at
 /// the extreme itself: the bound is met unless several points tie there.
-VTKASMFILTERS_EXPORT KeyClusters FindKeyClusters(const LocalPoints& q, const KeyPointOptions& options);
+VTKASMFILTERS_EXPORT KeyClusters FindKeyClusters(
+  const LocalPoints& q, const KeyPointOptions& options);
 /// The key point rule shared by every filter that looks for key points (the
 /// simplifier and the key point error), so both see the same key points.
 struct VTKASMFILTERS_EXPORT KeyPointRule
@@ -66,8 +67,8 @@ struct VTKASMFILTERS_EXPORT KeyPointRule
 /// i < points.size(), whose PCA frame is `frame`. Fills `q` with the points in the frame
 /// (q[i] for points[i]). A cell whose extent along v2 is within rounding of
 /// its coordinates (CoordinateEpsilon) is flat.
-VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(Coordinates xyz, IdView points,
-  const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
+VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(
+  Coordinates xyz, IdView points, const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
 } // namespace asmcore
 
 #endif

@@ -13,7 +13,6 @@ namespace
 {
 constexpr double Infinity = std::numeric_limits<double>::infinity();
 
-
 } // namespace
 
 void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
@@ -43,8 +42,8 @@ void RelaxCell(Coordinates xyz, IdView points, const CellFrame& frame,
       }
     }
     Clusters groups;
-    SplitInPlane(scratch.Local, scratch.Subset.data(), scratch.Subset.data() + scratch.Subset.size(),
-      free, groups);
+    SplitInPlane(scratch.Local, scratch.Subset.data(),
+      scratch.Subset.data() + scratch.Subset.size(), free, groups);
     for (Index k = 0; k < groups.Size(); ++k)
     {
       const Eigen::Vector3d world =

@@ -37,7 +37,8 @@ inline double SquaredDistance(const double* a, const double* b)
 /// the choice between them is made on positions instead (PositionBefore).
 inline bool NearlyEqual(double a, double b)
 {
-  return a == b || (std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-12 * std::max(a, b));
+  return a == b ||
+    (std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-12 * std::max(a, b));
 }
 
 /// A cell owning more samples than this is handled with O(n log b) steps
@@ -48,9 +49,9 @@ constexpr Index LargeCellBudget = 64;
 /// The samples of a run, grouped by owner cell.
 struct VTKASMFILTERS_EXPORT SampleSet
 {
-  std::vector<double> Position;    ///< 3 per sample
-  std::vector<char> Fixed;         ///< key samples do not move
-  std::vector<Index> Start;        ///< cell c owns samples [Start[c], Start[c+1])
+  std::vector<double> Position; ///< 3 per sample
+  std::vector<char> Fixed;      ///< key samples do not move
+  std::vector<Index> Start;     ///< cell c owns samples [Start[c], Start[c+1])
   Index Size() const { return static_cast<Index>(this->Fixed.size()); }
 };
 

@@ -37,8 +37,8 @@ DistanceSummary Summarize(const std::vector<double>& d)
   return s;
 }
 
-std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
-  const GridSpec& spec, const KeyPointRule& rule, const Execution& execution)
+std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids, const GridSpec& spec,
+  const KeyPointRule& rule, const Execution& execution)
 {
   const CellGrid grid = BuildCellGrid(xyz, ids, spec, execution);
   const Index cells = grid.NumberOfCells();
@@ -54,7 +54,8 @@ std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
       const KeyClusters kc = FindCellKeyClusters(local.Xyz.data(), points, frame, rule, q);
       for (Index k = 0; k < kc.Key.Size(); ++k)
       {
-        perCell[c].push_back(frame.Centroid + frame.Axes * Centroid(q, kc.Key.Begin(k), kc.Key.End(k)));
+        perCell[c].push_back(
+          frame.Centroid + frame.Axes * Centroid(q, kc.Key.Begin(k), kc.Key.End(k)));
       }
     }
   });
@@ -267,8 +268,8 @@ std::vector<double> NearestDistances(
   return d;
 }
 
-std::vector<double> PointToPlaneDistances(const double* xyz, IdView ids,
-  const Neighbors& surface, int k, const Execution& execution)
+std::vector<double> PointToPlaneDistances(
+  const double* xyz, IdView ids, const Neighbors& surface, int k, const Execution& execution)
 {
   std::vector<double> d;
   SurfaceDistances(xyz, ids, surface, k, &d, nullptr, execution);
@@ -306,9 +307,9 @@ Bounds Union(const Bounds& a, const Bounds& b)
 }
 } // namespace
 
-Comparison CompareClouds(const double* xyz, IdView ids,
-  const Neighbors& originalTree, const double* sxyz, const std::vector<Index>& sids,
-  const ComparisonOptions& options, const Execution& execution)
+Comparison CompareClouds(const double* xyz, IdView ids, const Neighbors& originalTree,
+  const double* sxyz, const std::vector<Index>& sids, const ComparisonOptions& options,
+  const Execution& execution)
 {
   Comparison result;
   if (ids.empty() || sids.empty())
@@ -354,8 +355,8 @@ Comparison CompareClouds(const double* xyz, IdView ids,
   const std::vector<double> simplifiedKeyXyz = Flatten(simplifiedKeys, simplifiedKeyIds);
   const Neighbors simplifiedTree(sxyz, sids, execution);
   const Neighbors simplifiedKeyTree(simplifiedKeyXyz.data(), simplifiedKeyIds, execution);
-  std::vector<double> keyErrors = NearestDistances(keyXyz.data(), keyIds,
-    simplifiedKeys.empty() ? simplifiedTree : simplifiedKeyTree, execution);
+  std::vector<double> keyErrors = NearestDistances(
+    keyXyz.data(), keyIds, simplifiedKeys.empty() ? simplifiedTree : simplifiedKeyTree, execution);
   if (options.Measure == KeyPointDistance::Squared)
   {
     for (double& e : keyErrors)
@@ -385,8 +386,8 @@ Comparison CompareClouds(const double* xyz, IdView ids,
     result.Aborted = true;
     return result;
   }
-  SurfaceDistances(sxyz, sids, originalTree, options.PlaneNeighbors, &result.SimplifiedError,
-    &nearest, execution);
+  SurfaceDistances(
+    sxyz, sids, originalTree, options.PlaneNeighbors, &result.SimplifiedError, &nearest, execution);
   result.SimplifiedToOriginal = Summarize(nearest);
   result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);
   execution.Report(1.0);

@@ -40,20 +40,19 @@ VTKASMFILTERS_EXPORT DistanceSummary Summarize(const std::vector<double>& d);
 
 /// The key points of a whole cloud (§3.2): the centroid of every key cluster
 /// of every cell of `spec`, found with `rule`, ordered by cell.
-VTKASMFILTERS_EXPORT std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz,
-  IdView ids, const GridSpec& spec, const KeyPointRule& rule,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids,
+  const GridSpec& spec, const KeyPointRule& rule, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids: the distance to its nearest point in
 /// `target` (+infinity when `target` is empty).
-VTKASMFILTERS_EXPORT std::vector<double> NearestDistances(const double* xyz,
-  IdView ids, const Neighbors& target, const Execution& execution = {});
+VTKASMFILTERS_EXPORT std::vector<double> NearestDistances(
+  const double* xyz, IdView ids, const Neighbors& target, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids: the distance to the plane fitted
 /// (PCA) to its k nearest points of the cloud indexed by `surface`; the
 /// distance to the nearest point when fewer than 3 points are found.
-VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz,
-  IdView ids, const Neighbors& surface, int k, const Execution& execution = {});
+VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(
+  const double* xyz, IdView ids, const Neighbors& surface, int k, const Execution& execution = {});
 
 /// For each point xyz[3*id], id in ids, from its k nearest points of the
 /// cloud indexed by `surface` (one query each): in `plane`
@@ -61,9 +60,8 @@ VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(const double* xyz
 /// gives (either may be null; resized to ids.size()). The queries are made
 /// in blocks of nearby points (ForEachKNearest, BlockNeighbors.h), whatever
 /// the order of the points; each answer is the same as alone.
-VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids,
-  const Neighbors& surface, int k, std::vector<double>* plane, std::vector<double>* nearest,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids, const Neighbors& surface,
+  int k, std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution = {});
 
 /// Parameters of CompareClouds.
 struct VTKASMFILTERS_EXPORT ComparisonOptions
@@ -82,13 +80,13 @@ struct VTKASMFILTERS_EXPORT Comparison
   double CellSize = 0.0;
   Index OriginalKeyPoints = 0;
   Index SimplifiedKeyPoints = 0;
-  double AKPE = 0.0; ///< Eq. 1 over the original key points
-  double MKPE = 0.0; ///< Eq. 2
-  double Diagonal = 0.0; ///< of the original's bounding box
+  double AKPE = 0.0;                    ///< Eq. 1 over the original key points
+  double MKPE = 0.0;                    ///< Eq. 2
+  double Diagonal = 0.0;                ///< of the original's bounding box
   DistanceSummary OriginalToSimplified; ///< nearest-neighbour distances
   DistanceSummary SimplifiedToOriginal;
-  double Hausdorff = 0.0;    ///< symmetric: max of the two maxima
-  DistanceSummary PointToPlane; ///< original points to the simplified surface
+  double Hausdorff = 0.0;              ///< symmetric: max of the two maxima
+  DistanceSummary PointToPlane;        ///< original points to the simplified surface
   std::vector<double> SimplifiedError; ///< per simplified point: distance to the original surface
   bool Aborted = false;
 };

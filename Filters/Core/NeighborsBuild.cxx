@@ -80,7 +80,8 @@ CompactEntry LoadEntry<CompactEntry>(Coordinates xyz, Index id)
 
 // Bounds and smallest id of entries [begin, end) (not empty), into lo, hi.
 template <typename Entry>
-void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], double hi[3], Index& minId)
+void RangeBounds(
+  const Entry* points, Index begin, Index end, double lo[3], double hi[3], Index& minId)
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -102,8 +103,8 @@ void RangeBounds(const Entry* points, Index begin, Index end, double lo[3], doub
 // as each entry is classified (once); returns where the second part begins.
 // A part may be empty (the caller then splits at the median).
 template <typename Entry, typename Less, typename Part>
-Index PartitionWithBounds(
-  Entry* points, Index begin, Index end, const Entry& pivot, const Less& less, Part& left, Part& right)
+Index PartitionWithBounds(Entry* points, Index begin, Index end, const Entry& pivot,
+  const Less& less, Part& left, Part& right)
 {
   double lo[2][3], hi[2][3]; // 0: left, 1: right (locals: kept in registers)
   Index minId[2] = { std::numeric_limits<Index>::max(), std::numeric_limits<Index>::max() };
@@ -194,8 +195,8 @@ void BasicNeighbors<E>::Build(Coordinates xyz, IdView ids, const Execution& exec
   bool byBucket = false;
   Scratch rootScratch;
   SplitPlan& plan = rootScratch.Plan;
-  const bool spatial = n > LeafSize && (root.Lo[0] < root.Hi[0] || root.Lo[1] < root.Hi[1] ||
-                                        root.Lo[2] < root.Hi[2]) &&
+  const bool spatial = n > LeafSize &&
+    (root.Lo[0] < root.Hi[0] || root.Lo[1] < root.Hi[1] || root.Lo[2] < root.Hi[2]) &&
     plan.Make(root.Lo, root.Hi, n, LeafSize, SplitPlan::MostBits);
   BucketSet& buckets = rootScratch.Buckets;
   if (spatial)
@@ -208,8 +209,8 @@ void BasicNeighbors<E>::Build(Coordinates xyz, IdView ids, const Execution& exec
         xyz.Get(ids[i], p);
         return plan.BucketOf(p);
       },
-      [&](Index i) { return LoadEntry<Entry>(xyz, ids[i]); },
-      buckets.Start, this->Points, execution);
+      [&](Index i) { return LoadEntry<Entry>(xyz, ids[i]); }, buckets.Start, this->Points,
+      execution);
   }
   else
   {
@@ -276,8 +277,9 @@ void BasicNeighbors<E>::Build(Coordinates xyz, IdView ids, const Execution& exec
     std::size_t which = static_cast<std::size_t>(k);
     if (byBucket)
     {
-      which = static_cast<std::size_t>(std::upper_bound(buckets.Start.begin(), buckets.Start.end(),
-                                          top.Children[which].Begin) - buckets.Start.begin() - 1);
+      which = static_cast<std::size_t>(
+        std::upper_bound(buckets.Start.begin(), buckets.Start.end(), top.Children[which].Begin) -
+        buckets.Start.begin() - 1);
     }
     const auto base = static_cast<Index>(this->Nodes.size());
     for (Node node : subtrees[which])
@@ -302,7 +304,8 @@ void BasicNeighbors<E>::BuildSubtree(const Task& task, std::vector<Node>& out, S
 
 template <typename E>
 template <typename Pending>
-Index BasicNeighbors<E>::Emit(const Piece& piece, int local, std::vector<Node>& out, const Pending& pending)
+Index BasicNeighbors<E>::Emit(
+  const Piece& piece, int local, std::vector<Node>& out, const Pending& pending)
 {
   const auto self = static_cast<Index>(out.size());
   const typename Piece::Local& node = piece.Nodes[static_cast<std::size_t>(local)];
@@ -433,7 +436,8 @@ void BasicNeighbors<E>::BuildTask(const Task& task, Piece& piece, Scratch& scrat
         scratch.Spare.resize(static_cast<std::size_t>(n));
         for (Index i = begin; i < end; ++i)
         {
-          scratch.Spare[static_cast<std::size_t>(fill[scratch.Bucket[i - begin]]++ - begin)] = points[i];
+          scratch.Spare[static_cast<std::size_t>(fill[scratch.Bucket[i - begin]]++ - begin)] =
+            points[i];
         }
         std::copy(scratch.Spare.begin(), scratch.Spare.begin() + n, points + begin);
       }

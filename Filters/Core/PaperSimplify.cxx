@@ -202,7 +202,8 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
       if (b < 0)
       {
         haloSlot.resize(static_cast<std::size_t>(total), 0);
-        std::fill(haloSlot.begin() + grid.CellStart[c], haloSlot.begin() + grid.CellStart[c + 1], 1);
+        std::fill(
+          haloSlot.begin() + grid.CellStart[c], haloSlot.begin() + grid.CellStart[c + 1], 1);
       }
     }
   }
@@ -217,7 +218,8 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
   {
     sampleStart[c + 1] = sampleStart[c] + budget[c];
   }
-  ResizeInParallel(result.Samples, static_cast<std::size_t>(sampleStart[cells]), Sample{}, execution);
+  ResizeInParallel(
+    result.Samples, static_cast<std::size_t>(sampleStart[cells]), Sample{}, execution);
   // The members start as the grid's order (the points cell by cell): each
   // cell rewrites its own range, from a copy of it, grouped by sample.
   result.Members = std::move(grid.Order);
@@ -278,7 +280,8 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
         const Index nearest = NearestMember(q, first, last, local);
         // A single point, or a snapped sample, is an input point exactly.
         const Eigen::Vector3d world = (parameters.Snap || last - first == 1)
-          ? Eigen::Vector3d(cellXyz[3 * nearest], cellXyz[3 * nearest + 1], cellXyz[3 * nearest + 2])
+          ? Eigen::Vector3d(
+              cellXyz[3 * nearest], cellXyz[3 * nearest + 1], cellXyz[3 * nearest + 2])
           : Eigen::Vector3d(frame.Centroid + frame.Axes * local);
         Eigen::Vector3d normal = frame.Normal();
         Eigen::Vector3d reference = frame.Centroid - cloudCentroid;

@@ -25,8 +25,8 @@
 namespace asmcore
 {
 /// Simplify in the Paper mode; same contract as Simplify().
-VTKASMFILTERS_EXPORT SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids,
-  NormalField normals, const SimplifyParameters& parameters, const Execution& execution = {});
+VTKASMFILTERS_EXPORT SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
+  const SimplifyParameters& parameters, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

@@ -42,7 +42,8 @@ Index NearestMember(
   return best;
 }
 
-Eigen::Vector3d Representative(const LocalPoints& q, const Index* first, const Index* last, bool snap)
+Eigen::Vector3d Representative(
+  const LocalPoints& q, const Index* first, const Index* last, bool snap)
 {
   const Eigen::Vector3d c = Centroid(q, first, last);
   return snap ? q[NearestMember(q, first, last, c)] : c;

@@ -253,7 +253,8 @@ bool LinkDenseInPlane(const LocalPoints& q, const std::vector<Index>& subset, do
             continue;
           }
           const std::int64_t other = bin + dy * width + dx;
-          if (start[other] == start[other + 1] || sets.Find(first) == sets.Find(order[start[other]]))
+          if (start[other] == start[other + 1] ||
+            sets.Find(first) == sets.Find(order[start[other]]))
           {
             continue;
           }

@@ -9,7 +9,6 @@ namespace asmcore
 {
 using selection::BlockBegin;
 
-
 void SortRanked(std::vector<RankedValue>& values, const Execution& execution)
 {
   const Index n = static_cast<Index>(values.size());
@@ -43,8 +42,10 @@ void SortRanked(std::vector<RankedValue>& values, const Execution& execution)
   }
 }
 
-std::vector<Index> LargestFinite(const double* values, Index n, Index look, const Execution& execution)
+std::vector<Index> LargestFinite(
+  const double* values, Index n, Index look, const Execution& execution)
 {
-  return LargestFiniteOf(n, [values](Index i) { return values[i]; }, look, execution);
+  return LargestFiniteOf(
+    n, [values](Index i) { return values[i]; }, look, execution);
 }
 } // namespace asmcore

@@ -65,7 +65,8 @@ std::vector<Index> LargestFiniteOf(Index n, ValueOf&& value, Index look, const E
     execution.Run(0, blocks, [&](Index first, Index last) {
       for (Index b = first; b < last; ++b)
       {
-        for (Index i = selection::BlockBegin(n, blocks, b); i < selection::BlockBegin(n, blocks, b + 1); ++i)
+        for (Index i = selection::BlockBegin(n, blocks, b);
+             i < selection::BlockBegin(n, blocks, b + 1); ++i)
         {
           const double v = value(i);
           if (v >= threshold && std::isfinite(v))
@@ -93,7 +94,8 @@ std::vector<Index> LargestFiniteOf(Index n, ValueOf&& value, Index look, const E
   execution.Run(0, blocks, [&](Index first, Index last) {
     for (Index b = first; b < last; ++b)
     {
-      for (Index i = selection::BlockBegin(n, blocks, b); i < selection::BlockBegin(n, blocks, b + 1); i += Stride)
+      for (Index i = selection::BlockBegin(n, blocks, b);
+           i < selection::BlockBegin(n, blocks, b + 1); i += Stride)
       {
         const double v = value(i);
         if (std::isfinite(v))
@@ -112,8 +114,8 @@ std::vector<Index> LargestFiniteOf(Index n, ValueOf&& value, Index look, const E
   std::vector<RankedValue> pool;
   if (rank < sample.size())
   {
-    std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(rank), sample.end(),
-      std::greater<double>());
+    std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(rank),
+      sample.end(), std::greater<double>());
     pool = collect(sample[rank]);
   }
   if (static_cast<Index>(pool.size()) < look)

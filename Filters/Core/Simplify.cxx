@@ -23,7 +23,8 @@ double SamplesPerCellOf(const SimplifyParameters& parameters)
 {
   const bool feature = parameters.Mode == SimplifyMode::FeaturePreserving;
   return std::max(1.0,
-    feature && parameters.FeatureSamplesPerCell > 0.0 ? parameters.FeatureSamplesPerCell : parameters.SamplesPerCell);
+    feature && parameters.FeatureSamplesPerCell > 0.0 ? parameters.FeatureSamplesPerCell
+                                                      : parameters.SamplesPerCell);
 }
 
 double VariationWeightOf(const SimplifyParameters& parameters)
@@ -32,7 +33,9 @@ double VariationWeightOf(const SimplifyParameters& parameters)
   {
     return parameters.CurvatureWeight;
   }
-  return parameters.Mode == SimplifyMode::FeaturePreserving ? std::max(0.0, parameters.VariationBudget) : 0.0;
+  return parameters.Mode == SimplifyMode::FeaturePreserving
+    ? std::max(0.0, parameters.VariationBudget)
+    : 0.0;
 }
 
 double VariationCapOf(const SimplifyParameters& parameters)
@@ -87,8 +90,8 @@ std::vector<double> CellShares(const std::vector<CellFrame>& frames, const CellG
   return CellShares(capacity, variation, parameters, exponent);
 }
 
-CellGrid BuildRunGrid(Coordinates xyz, IdView ids,
-  const SimplifyParameters& parameters, Index target, const Execution& execution)
+CellGrid BuildRunGrid(Coordinates xyz, IdView ids, const SimplifyParameters& parameters,
+  Index target, const Execution& execution)
 {
   const auto n = static_cast<Index>(ids.size());
   if (parameters.Cells && parameters.Cells->NumberOfPoints() == n)
@@ -135,7 +138,8 @@ void SummarizeKeyPoints(SimplifyResult& result)
       result.MKPE = std::max(result.MKPE, s.KeyError);
     }
   }
-  result.AKPE = result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
+  result.AKPE =
+    result.NumberOfKeyPoints > 0 ? sum / static_cast<double>(result.NumberOfKeyPoints) : 0.0;
 }
 
 SimplifyResult Simplify(Coordinates xyz, IdView ids, NormalField normals,

@@ -39,29 +39,32 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   double Alpha = 0.125;        ///< partition threshold, fraction of a cell's v2 extent
   double ErrorTolerance = 0.0; ///< bound on each key point's error; <= 0: off
   WeightMode Weight = WeightMode::Uniform;
-  double CurvatureWeight = 1.0;            ///< k of the surface-variation weight
-  std::uint64_t RandomSeed = 1;            ///< seed of the random choice among key points
-  bool Snap = false;                       ///< samples are input points (nearest the centroid)
-  double LinkFactor = 2.0;                 ///< key-cluster link distance, in mean point spacings
-  double CoordinateEpsilon = DBL_EPSILON;  ///< relative precision of the input coordinates
+  double CurvatureWeight = 1.0;           ///< k of the surface-variation weight
+  std::uint64_t RandomSeed = 1;           ///< seed of the random choice among key points
+  bool Snap = false;                      ///< samples are input points (nearest the centroid)
+  double LinkFactor = 2.0;                ///< key-cluster link distance, in mean point spacings
+  double CoordinateEpsilon = DBL_EPSILON; ///< relative precision of the input coordinates
   SimplifyMode Mode = SimplifyMode::FeaturePreserving;
 
   // Options of the feature-preserving mode (ignored in Paper mode); each one
   // switches one fix off (see FeatureSimplify.h).
   bool ValidateKeyPoints = true; ///< Lemma 2 across cell borders
   double KeyPointRadius = 0.7;   ///< Lemma 2 radius, fraction of the cell size, in (0, 1]
-  double KeyPointProminence = 0.05; ///< least prominence of a validated key, fraction of that radius
-  bool InPlaneKeyPoints = true;  ///< extremes along +-v0/+-v1 are key points too
-  bool ExtremeKeyPoints = true;  ///< a key sample is its extreme point, not the band centroid
-  bool CoverEveryCell = true;    ///< every non-empty cell gets a sample when N_s allows
-  double BudgetExponent = 0.5;   ///< gamma of N_c ~ w_c * n_c^gamma (the paper: 1)
-  int LloydIterations = 4;       ///< inside a cell; 0: median splits of the non-key points
-  int CrossCellIterations = 1;   ///< across cell borders, clamped to MaxCrossCellIterations
+  double KeyPointProminence =
+    0.05;                         ///< least prominence of a validated key, fraction of that radius
+  bool InPlaneKeyPoints = true;   ///< extremes along +-v0/+-v1 are key points too
+  bool ExtremeKeyPoints = true;   ///< a key sample is its extreme point, not the band centroid
+  bool CoverEveryCell = true;     ///< every non-empty cell gets a sample when N_s allows
+  double BudgetExponent = 0.5;    ///< gamma of N_c ~ w_c * n_c^gamma (the paper: 1)
+  int LloydIterations = 4;        ///< inside a cell; 0: median splits of the non-key points
+  int CrossCellIterations = 1;    ///< across cell borders, clamped to MaxCrossCellIterations
   double FeatureLinkFactor = 4.0; ///< key-cluster link distance, in mean point spacings
-  bool InputPointSamples = true; ///< each sample is the input point nearest its cluster's centre (see BoundSnappedHoles)
-  bool FillHoles = true;        ///< bounded hole filling (global: GatherOverProcesses in distributed runs)
+  bool InputPointSamples =
+    true; ///< each sample is the input point nearest its cluster's centre (see BoundSnappedHoles)
+  bool FillHoles = true; ///< bounded hole filling (global: GatherOverProcesses in distributed runs)
   double HoleFillFraction = 0.02; ///< at most this fraction of the samples is moved per round
-  int HoleFillRounds = 4;         ///< rounds of hole filling, each followed by a Lloyd step (DefaultHoleFillRounds)
+  int HoleFillRounds =
+    4; ///< rounds of hole filling, each followed by a Lloyd step (DefaultHoleFillRounds)
   /// Mean budget per non-empty cell aimed at by the automatic cell size in
   /// this mode (SamplesPerCell is the paper mode's); <= 0: SamplesPerCell.
   double FeatureSamplesPerCell = 4.0;
@@ -195,7 +198,7 @@ struct VTKASMFILTERS_EXPORT Sample
   double Position[3] = { 0, 0, 0 }; ///< cluster centroid, or the snapped input point
   double Normal[3] = { 0, 0, 1 };   ///< the cell's PCA normal, oriented
   Index Representative = -1;        ///< input point nearest the centroid
-  Index MemberBegin = 0;            ///< members are SimplifyResult::Members[MemberBegin, +ClusterSize)
+  Index MemberBegin = 0; ///< members are SimplifyResult::Members[MemberBegin, +ClusterSize)
   Index ClusterSize = 0;
   /// The first CoreSize members place the sample (centroid, representative);
   /// the others joined it as their nearest sample (points of cells or key
@@ -210,7 +213,7 @@ struct VTKASMFILTERS_EXPORT Sample
 struct VTKASMFILTERS_EXPORT SimplifyResult
 {
   UnwrittenArray<Sample> Samples; ///< (grown by ResizeInParallel)
-  PointArray<Index> Members; ///< input point ids, grouped by sample: a partition of `ids`
+  PointArray<Index> Members;      ///< input point ids, grouped by sample: a partition of `ids`
   double CellSize = 0.0;
   Index NumberOfCells = 0; ///< non-empty grid cells
   Index NumberOfKeyPoints = 0;
@@ -251,8 +254,8 @@ VTKASMFILTERS_EXPORT void SummarizeKeyPoints(SimplifyResult& result);
 /// min(NumberOfSamples, ids.size()) samples. `normals` (N x 3, may be empty)
 /// orients the output normals; without it they point away from the cloud's
 /// centroid. Samples are ordered by grid cell, then key samples first.
-VTKASMFILTERS_EXPORT SimplifyResult Simplify(Coordinates xyz, IdView ids,
-  NormalField normals, const SimplifyParameters& parameters, const Execution& execution = {});
+VTKASMFILTERS_EXPORT SimplifyResult Simplify(Coordinates xyz, IdView ids, NormalField normals,
+  const SimplifyParameters& parameters, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

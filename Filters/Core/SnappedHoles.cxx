@@ -69,8 +69,8 @@ namespace
 // Moves the sample at `position` from there towards `to` only as far as
 // `limit` (a squared reach) needs: the reach along the segment is convex,
 // so bisection.
-void MoveWithinBound(Coordinates xyz, const Index* first, Index n, const double* to,
-  double limit, double* position)
+void MoveWithinBound(
+  Coordinates xyz, const Index* first, Index n, const double* to, double limit, double* position)
 {
   const double from[3] = { position[0], position[1], position[2] };
   auto at = [&](double t, double p[3]) {
@@ -181,8 +181,7 @@ void MoveSnappedSamples(Coordinates xyz, const std::vector<Index>& memberStart,
 void BoundSnappedHoles(Coordinates xyz, const std::vector<Index>& memberStart, const Index* members,
   const std::vector<char>& snapped, double* positions, const Execution& execution)
 {
-  const std::vector<double> reach =
-    SnappedReaches(xyz, memberStart, members, positions, execution);
+  const std::vector<double> reach = SnappedReaches(xyz, memberStart, members, positions, execution);
   double limit = FixedReach(reach, snapped); // squared largest hole so far
   // Only those that reach past the fixed samples can move or raise the bound:
   // widest first (ties: lower index), sorted in parallel.

@@ -88,10 +88,9 @@ VTKASMFILTERS_EXPORT double SnapBound(
 
 /// Moves the candidates that reach past `limit` towards their centres, just
 /// far enough.
-VTKASMFILTERS_EXPORT void MoveSnappedSamples(Coordinates xyz,
-  const std::vector<Index>& memberStart, const Index* members,
-  const std::vector<SnapCandidate>& candidates, double limit, double* positions,
-  const Execution& execution = {});
+VTKASMFILTERS_EXPORT void MoveSnappedSamples(Coordinates xyz, const std::vector<Index>& memberStart,
+  const Index* members, const std::vector<SnapCandidate>& candidates, double limit,
+  double* positions, const Execution& execution = {});
 } // namespace asmcore
 
 #endif

@@ -107,7 +107,7 @@ struct SplitPlan
 // The ranges, bounds and smallest ids of the buckets of a split.
 struct BucketSet
 {
-  std::vector<Index> Start; // bucket b: entries [Start[b], Start[b + 1])
+  std::vector<Index> Start;   // bucket b: entries [Start[b], Start[b + 1])
   std::vector<double> Lo, Hi; // 3 per bucket; meaningful for non-empty buckets
   std::vector<Index> MinId;
   void Reset(int buckets)

@@ -89,7 +89,8 @@ void NearestSamplesInRing(Coordinates xyz, const CellGrid& grid,
           if (k != 13 && level == shared && ring[k] >= 0 &&
             sampleStart[ring[k] + 1] > sampleStart[ring[k]])
           {
-            around[count++] = { sampleStart[ring[k]], sampleStart[ring[k] + 1], { o[0], o[1], o[2] } };
+            around[count++] = { sampleStart[ring[k]], sampleStart[ring[k] + 1],
+              { o[0], o[1], o[2] } };
           }
         }
       }
@@ -140,7 +141,8 @@ void NearestSamplesInRing(Coordinates xyz, const CellGrid& grid,
             best = better ? s : best;
           }
         };
-        scan(sampleStart[c], sampleStart[c + 1]); // the own cell first: the best bound for the others
+        scan(
+          sampleStart[c], sampleStart[c + 1]); // the own cell first: the best bound for the others
         for (int k = 0; k < count; ++k)
         {
           const Neighbour& nb = around[k];

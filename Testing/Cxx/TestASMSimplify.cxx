@@ -76,7 +76,8 @@ TEST(ASMSimplify, BunnyAtFivePercentWithArraysAndFieldData)
   vtkPolyData* out = run.Execute(input);
   ASSERT_EQ(out->GetNumberOfPoints(), 1797); // round(0.05 * 35947)
   vtkPointData* pd = out->GetPointData();
-  for (const char* name : { "Normals", "KeyPoint", "ClusterSize", "SurfaceVariation", "vtkOriginalPointIds" })
+  for (const char* name :
+    { "Normals", "KeyPoint", "ClusterSize", "SurfaceVariation", "vtkOriginalPointIds" })
   {
     ASSERT_NE(pd->GetArray(name), nullptr) << name;
     EXPECT_EQ(pd->GetArray(name)->GetNumberOfTuples(), 1797) << name;
@@ -132,8 +133,8 @@ TEST(ASMSimplify, ErrorToleranceBoundsMKPEOnTheBunny)
   // Relative to the bounding-box diagonal.
   double b[6];
   input->GetBounds(b);
-  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
+  const double diagonal = std::sqrt(
+    (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   FilterRun relative;
   relative.Filter->SetErrorTolerance(1e-4);
   relative.Filter->RelativeErrorToleranceOn();
@@ -212,7 +213,8 @@ TEST(ASMSimplify, AveragesInputArraysOverClusters)
     }
     EXPECT_EQ(label->GetValue(i), 7);
     outNormals->GetTuple(i, nrm);
-    EXPECT_NEAR(std::hypot(nrm[0], nrm[1], nrm[2]), 1.0, 1e-6) << "averaged normals are renormalised";
+    EXPECT_NEAR(std::hypot(nrm[0], nrm[1], nrm[2]), 1.0, 1e-6)
+      << "averaged normals are renormalised";
     pca->GetTuple(i, pcaN);
     EXPECT_GT(pcaN[0] * nrm[0] + pcaN[1] * nrm[1] + pcaN[2] * nrm[2], 0.0)
       << "PCA normals agree with the input normals";
@@ -370,7 +372,8 @@ TEST(ASMSimplify, AcceptsUnstructuredGridsAndDoublePoints)
 TEST(ASMSimplify, FlatFloatPlaneHasNoKeyPoints)
 {
   // A tilted plane stored in float: rounding must not create key points.
-  Cloud c = asmtest::GridSurface(150, 50.0, [](double x, double y) { return 0.3 * x + 0.7 * y + 100.0; });
+  Cloud c =
+    asmtest::GridSurface(150, 50.0, [](double x, double y) { return 0.3 * x + 0.7 * y + 100.0; });
   FilterRun run;
   vtkPolyData* out = run.Execute(ToPolyData(c, VTK_FLOAT));
   ASSERT_EQ(out->GetNumberOfPoints(), std::llround(0.05 * 150 * 150));
@@ -482,7 +485,10 @@ TEST(ASMSimplify, InputNormalsOrientTheSameWhateverTheirArray)
     for (std::size_t k = 0; k < reference.size(); k += 3)
     {
       opposite += reference[k] * inward[k] + reference[k + 1] * inward[k + 1] +
-          reference[k + 2] * inward[k + 2] < 0.0 ? 1 : 0;
+            reference[k + 2] * inward[k + 2] <
+          0.0
+        ? 1
+        : 0;
     }
     EXPECT_EQ(opposite, reference.size() / 3) << mode;
   }

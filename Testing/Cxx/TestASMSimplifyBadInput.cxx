@@ -18,9 +18,9 @@
 
 #include <cmath>
 #include <limits>
-#include <string>
 #include <random>
 #include <set>
+#include <string>
 
 using namespace asmtest;
 
@@ -172,7 +172,8 @@ TEST(ASMSimplifyBadInput, MoreOutputPointsThanInputPassesThrough)
   std::set<vtkIdType> ids;
   for (vtkIdType i = 0; i < 500; ++i)
   {
-    const auto id = static_cast<vtkIdType>(out->GetPointData()->GetArray("vtkOriginalPointIds")->GetTuple1(i));
+    const auto id =
+      static_cast<vtkIdType>(out->GetPointData()->GetArray("vtkOriginalPointIds")->GetTuple1(i));
     ids.insert(id);
     EXPECT_EQ(out->GetPointData()->GetArray("ClusterSize")->GetTuple1(i), 1.0);
     for (int a = 0; a < 3; ++a)

@@ -100,8 +100,8 @@ Index ExpectNearestRingSamples(const Cloud& c, double h)
   {
     asmcore::PointArray<asmcore::SampleId> serial, threaded;
     asmcore::AssignToSamples(c.data(), grid, gridded.Neighbors, samples, serial, {}, weights);
-    asmcore::AssignToSamples(c.data(), grid, gridded.Neighbors, samples, threaded,
-      asmtest::UnevenTwoThreads(), weights);
+    asmcore::AssignToSamples(
+      c.data(), grid, gridded.Neighbors, samples, threaded, asmtest::UnevenTwoThreads(), weights);
     EXPECT_EQ(serial, threaded);
     for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
     {

@@ -62,7 +62,8 @@ TEST(CellPartition, OwnersHoldTheirShareOfThePoints)
   const double n = static_cast<double>(cloud.size() / 3);
   for (int processes : { 1, 2, 3, 5, 8, 16 })
   {
-    const asmcore::CellPartition partition = asmcore::MakeCellPartition(grid, processes, cloud.data(), ids);
+    const asmcore::CellPartition partition =
+      asmcore::MakeCellPartition(grid, processes, cloud.data(), ids);
     const std::vector<Index> count = PointsPerOwner(partition, cloud, processes);
     for (int q = 0; q < processes; ++q)
     {
@@ -115,10 +116,11 @@ TEST(CellPartition, OwnersNearACellAreTheOwnersOfItsRings)
     const int rings = std::vector<int>{ 0, 1, 2, 6 }[trial % 4];
     std::set<int> expected;
     std::int64_t c[3];
-    for (c[2] = std::max<std::int64_t>(0, ijk[2] - rings); c[2] <= std::min(grid.Dims[2] - 1, ijk[2] + rings); ++c[2])
+    for (c[2] = std::max<std::int64_t>(0, ijk[2] - rings);
+         c[2] <= std::min(grid.Dims[2] - 1, ijk[2] + rings); ++c[2])
     {
-      for (c[1] = std::max<std::int64_t>(0, ijk[1] - rings); c[1] <= std::min(grid.Dims[1] - 1, ijk[1] + rings);
-           ++c[1])
+      for (c[1] = std::max<std::int64_t>(0, ijk[1] - rings);
+           c[1] <= std::min(grid.Dims[1] - 1, ijk[1] + rings); ++c[1])
       {
         for (c[0] = std::max<std::int64_t>(0, ijk[0] - rings);
              c[0] <= std::min(grid.Dims[0] - 1, ijk[0] + rings); ++c[0])
@@ -141,7 +143,8 @@ TEST(CellPartition, SummedHistogramsGiveTheWholeCloudsTree)
   const auto ids = asmtest::AllIds(cloud);
   const asmcore::GridSpec grid = GridOf(cloud, 0.02);
   const int processes = 5;
-  const asmcore::CellPartition whole = asmcore::MakeCellPartition(grid, processes, cloud.data(), ids);
+  const asmcore::CellPartition whole =
+    asmcore::MakeCellPartition(grid, processes, cloud.data(), ids);
   // Each thread holds every 3rd point from its own offset (3 holders, the
   // partition is over 5 processes): the sums meet as MPI's would.
   const int holders = 3;
@@ -156,8 +159,8 @@ TEST(CellPartition, SummedHistogramsGiveTheWholeCloudsTree)
       {
         mine.push_back(ids[i]);
       }
-      parts[h] = asmcore::MakeCellPartition(grid, processes, cloud.data(), mine,
-        [&](std::vector<long long>& v) { sums.Meet(h, v); });
+      parts[h] = asmcore::MakeCellPartition(
+        grid, processes, cloud.data(), mine, [&](std::vector<long long>& v) { sums.Meet(h, v); });
     });
   }
   for (std::thread& t : threads)
@@ -202,7 +205,8 @@ TEST(CellPartition, MoreProcessesThanCells)
   // Four cells, four owners; the other processes own nothing.
   EXPECT_EQ(owners.size(), 4u);
   // An empty cloud still gives a tree (cut in the middle).
-  const asmcore::CellPartition empty = asmcore::MakeCellPartition(grid, 3, cloud.data(), asmcore::IdView());
+  const asmcore::CellPartition empty =
+    asmcore::MakeCellPartition(grid, 3, cloud.data(), asmcore::IdView());
   const std::int64_t corner[3] = { 0, 0, 0 };
   EXPECT_GE(empty.OwnerOf(corner), 0);
 }

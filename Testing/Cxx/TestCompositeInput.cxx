@@ -42,7 +42,8 @@ vtkSmartPointer<vtkPolyData> Block(const asmtest::Cloud& c, vtkIdType first, vtk
   return block;
 }
 
-vtkSmartPointer<vtkPolyData> SimplifyTo(vtkDataObject* input, int mode, vtkIdType count, int* warnings = nullptr)
+vtkSmartPointer<vtkPolyData> SimplifyTo(
+  vtkDataObject* input, int mode, vtkIdType count, int* warnings = nullptr)
 {
   vtkNew<vtkASMSimplify> simplify;
   vtkNew<asmtest::MessageCounter> messages;
@@ -108,7 +109,8 @@ TEST(CompositeInput, MultiBlockIsOneCloud)
       const auto within = static_cast<vtkIdType>(id->GetComponent(s, 0));
       ASSERT_TRUE(flat == 1 || flat == lastFlatIndex) << flat;
       const vtkIdType offset = flat == 1 ? 0 : 12000;
-      ASSERT_EQ(static_cast<vtkIdType>(label->GetComponent(s, 0)), offset + within) << "sample " << s;
+      ASSERT_EQ(static_cast<vtkIdType>(label->GetComponent(s, 0)), offset + within)
+        << "sample " << s;
     }
   }
 }
@@ -122,7 +124,8 @@ TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
   parts->SetPartition(1, Block(cloud, 5000, 14000));
   parts->SetPartition(2, Block(cloud, 14000, 20000));
   vtkSmartPointer<vtkPolyData> whole = Block(cloud, 0, 20000);
-  vtkSmartPointer<vtkPolyData> simplified = SimplifyTo(parts, vtkASMSimplify::FEATURE_PRESERVING, 900);
+  vtkSmartPointer<vtkPolyData> simplified =
+    SimplifyTo(parts, vtkASMSimplify::FEATURE_PRESERVING, 900);
   ASSERT_NE(simplified, nullptr);
   ASSERT_EQ(simplified->GetNumberOfPoints(), 900);
 
@@ -140,9 +143,9 @@ TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
     error->Update();
     vtkPolyData* out = vtkPolyData::SafeDownCast(error->GetOutputDataObject(0));
     EXPECT_NE(out, nullptr);
-    return out ? std::vector<double>{ asmtest::FieldValue(out, "MKPE"), asmtest::FieldValue(out, "AKPE"),
-                                      asmtest::FieldValue(out, "HausdorffDistance"),
-                                      static_cast<double>(out->GetNumberOfPoints()) }
+    return out ? std::vector<double>{ asmtest::FieldValue(out, "MKPE"),
+      asmtest::FieldValue(out, "AKPE"), asmtest::FieldValue(out, "HausdorffDistance"),
+      static_cast<double>(out->GetNumberOfPoints()) }
                : std::vector<double>{};
   };
   const std::vector<double> expected = measure(whole, simplified);
@@ -162,7 +165,8 @@ TEST(CompositeInput, NoPointsGiveAWarningAndAnEmptyOutput)
   blocks->SetBlock(0, vtkSmartPointer<vtkPolyData>::New());
   blocks->SetBlock(1, vtkSmartPointer<vtkImageData>::New());
   int warnings = 0;
-  vtkSmartPointer<vtkPolyData> out = SimplifyTo(blocks, vtkASMSimplify::FEATURE_PRESERVING, 10, &warnings);
+  vtkSmartPointer<vtkPolyData> out =
+    SimplifyTo(blocks, vtkASMSimplify::FEATURE_PRESERVING, 10, &warnings);
   ASSERT_NE(out, nullptr);
   EXPECT_EQ(out->GetNumberOfPoints(), 0);
   EXPECT_EQ(warnings, 1);

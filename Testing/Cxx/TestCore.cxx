@@ -46,8 +46,8 @@ Eigen::Vector3d World(const asmcore::CellFrame& frame, const Eigen::Vector3d& lo
 }
 
 // The key cluster whose extreme point is the origin, or -1.
-Index ApexCluster(const asmcore::CellFrame& frame, const asmcore::LocalPoints& q,
-  const asmcore::KeyClusters& kc)
+Index ApexCluster(
+  const asmcore::CellFrame& frame, const asmcore::LocalPoints& q, const asmcore::KeyClusters& kc)
 {
   for (Index k = 0; k < kc.Key.Size(); ++k)
   {
@@ -158,7 +158,7 @@ TEST(Grid, CanonicalOrderDoesNotDependOnTheOrderOfThePoints)
       asmtest::Add(c, 0.1 * i, 0.1 * j, 0.0);
     }
   }
-  asmtest::Add(c, -0.0, 0.5, 0.0); // the same position as (0, 0.5, 0)
+  asmtest::Add(c, -0.0, 0.5, 0.0);        // the same position as (0, 0.5, 0)
   asmtest::Add(c, 0.1 * 3, 0.1 * 3, 0.0); // a duplicate of point 39, id 145
   const Index n = static_cast<Index>(c.size() / 3);
   auto sequence = [&](std::vector<Index> ids) {
@@ -210,7 +210,8 @@ TEST(Grid, CanonicalOrderDoesNotDependOnTheOrderOfThePoints)
   }
 }
 
-// Both modes list the representatives' exact duplicates, and nothing else: what lets the VTK layer choose among them by value.
+// Both modes list the representatives' exact duplicates, and nothing else: what lets the VTK layer
+// choose among them by value.
 TEST(Simplify, RepresentativeDuplicatesAreListed)
 {
   const Cloud sphere = asmtest::Sphere(8000, 1.0, 3);
@@ -391,15 +392,17 @@ TEST(KeyPoints, ErrorToleranceBringsTheKeyPointToTheApex)
   const auto kc = asmcore::FindKeyClusters(q, options);
   const Index k = ApexCluster(frame, q, kc);
   ASSERT_GE(k, 0);
-  EXPECT_NEAR(World(frame, asmcore::Centroid(q, kc.Key.Begin(k), kc.Key.End(k))).norm(), 1.0 / 16.0, 5e-3);
+  EXPECT_NEAR(
+    World(frame, asmcore::Centroid(q, kc.Key.Begin(k), kc.Key.End(k))).norm(), 1.0 / 16.0, 5e-3);
   EXPECT_GE(kc.MaxError, 1.0 / 16.0 - 5e-3);
 }
 
 TEST(KeyPoints, TwoBumpsGiveTwoTopKeyPoints)
 {
   const auto bumps = [](double x, double y) {
-    return 0.3 * (std::exp(-((x - 0.5) * (x - 0.5) + y * y) / 0.02) +
-             std::exp(-((x + 0.5) * (x + 0.5) + y * y) / 0.02));
+    return 0.3 *
+      (std::exp(-((x - 0.5) * (x - 0.5) + y * y) / 0.02) +
+        std::exp(-((x + 0.5) * (x + 0.5) + y * y) / 0.02));
   };
   asmcore::CellFrame frame;
   const auto q = ToFrame(asmtest::GridSurface(61, 1.0, bumps), frame);
@@ -426,8 +429,8 @@ TEST(KeyPoints, TwoBumpsGiveTwoTopKeyPoints)
 TEST(KeyPoints, FlatCellHasNoKeyPoints)
 {
   asmcore::CellFrame frame;
-  const auto q =
-    ToFrame(asmtest::GridSurface(30, 1.0, [](double x, double y) { return 0.3 * x - 0.2 * y; }), frame);
+  const auto q = ToFrame(
+    asmtest::GridSurface(30, 1.0, [](double x, double y) { return 0.3 * x - 0.2 * y; }), frame);
   asmcore::KeyPointOptions options;
   options.LinkDistance = asmcore::PlaneLinkDistance(q, 2.0);
   options.FlatTolerance = 1e-9;
@@ -510,13 +513,15 @@ TEST(Simplify, RotatingTheInputRotatesTheKeyPoints)
     {
       continue;
     }
-    const Eigen::Vector3d expected = rotation * Eigen::Vector3d(s.Position[0], s.Position[1], s.Position[2]);
+    const Eigen::Vector3d expected =
+      rotation * Eigen::Vector3d(s.Position[0], s.Position[1], s.Position[2]);
     double best = 1e300;
     for (const auto& t : b.Samples)
     {
       if (t.Key)
       {
-        best = std::min(best, (Eigen::Vector3d(t.Position[0], t.Position[1], t.Position[2]) - expected).norm());
+        best = std::min(
+          best, (Eigen::Vector3d(t.Position[0], t.Position[1], t.Position[2]) - expected).norm());
       }
     }
     EXPECT_LT(best, 1e-9);

@@ -53,9 +53,8 @@ asmcore::Execution Threaded(int threads)
 }
 
 // Estimates at the given queries of a cloud (all its points used).
-std::vector<CurvatureEstimate> Estimate(const Cloud& c, const Cloud& queries,
-  const Cloud* normals, int k = asmcore::DefaultCurvatureNeighbors,
-  const asmcore::Execution& exec = asmcore::Execution())
+std::vector<CurvatureEstimate> Estimate(const Cloud& c, const Cloud& queries, const Cloud* normals,
+  int k = asmcore::DefaultCurvatureNeighbors, const asmcore::Execution& exec = asmcore::Execution())
 {
   const auto ids = AllIds(c);
   const asmcore::Neighbors tree(c.data(), ids);
@@ -280,9 +279,9 @@ TEST(Curvature, SurfaceVariationPeaksOnCubeEdges)
 {
   const Cloud cube = CubeSurface(41); // spacing 0.05
   Cloud queries;
-  asmtest::Add(queries, 1.0, 1.0, 0.0);  // edge midpoints
+  asmtest::Add(queries, 1.0, 1.0, 0.0); // edge midpoints
   asmtest::Add(queries, -1.0, 0.0, 1.0);
-  asmtest::Add(queries, 1.0, 0.0, 0.0);  // face centres
+  asmtest::Add(queries, 1.0, 0.0, 0.0); // face centres
   asmtest::Add(queries, 0.0, 0.0, -1.0);
   const auto e = Estimate(cube, queries, nullptr); // outward: away from the centre
   ASSERT_EQ(4u, e.size());
@@ -412,8 +411,8 @@ TEST(CurvatureBenchmark, DISABLED_MillionPointSphere)
   {
     const asmcore::Execution exec = t == 1 ? asmcore::Execution() : Threaded(static_cast<int>(t));
     t0 = Clock::now();
-    const auto e = asmcore::EstimateCurvature(
-      sphere.data(), ids, tree, queries.data(), n, nullptr, 20, exec);
+    const auto e =
+      asmcore::EstimateCurvature(sphere.data(), ids, tree, queries.data(), n, nullptr, 20, exec);
     double mean = 0.0;
     for (const CurvatureEstimate& c : e)
     {

@@ -68,9 +68,9 @@ bool SameVariant(const vtkVariant& a, const vtkVariant& b)
   {
     return a.ToString() == b.ToString();
   }
-  return a.IsFloat() || a.IsDouble() ? a.ToDouble() == b.ToDouble()
-                                     : a.ToUnsignedLongLong() == b.ToUnsignedLongLong() &&
-      a.ToLongLong() == b.ToLongLong();
+  return a.IsFloat() || a.IsDouble()
+    ? a.ToDouble() == b.ToDouble()
+    : a.ToUnsignedLongLong() == b.ToUnsignedLongLong() && a.ToLongLong() == b.ToLongLong();
 }
 int BitOf(vtkIdType i)
 {
@@ -116,7 +116,8 @@ vtkSmartPointer<vtkPolyData> SphereWithArrays()
 
 // `input` simplified to 300 points, on the distributed path or not; warnings
 // counted.
-vtkSmartPointer<vtkPolyData> SimplifyTo300(vtkPolyData* input, int mode, bool distributed, int& warnings)
+vtkSmartPointer<vtkPolyData> SimplifyTo300(
+  vtkPolyData* input, int mode, bool distributed, int& warnings)
 {
   asmtest::FilterRun run;
   vtkNew<vtkDummyController> controller;
@@ -146,7 +147,8 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
     std::vector<std::string> arrayNames[2]; // (vtkOriginalProcessIds left out)
     for (bool distributed : { false, true })
     {
-      const std::string what = "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
+      const std::string what =
+        "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
       int warnings = 0;
       vtkSmartPointer<vtkPolyData> out = SimplifyTo300(input, mode, distributed, warnings);
       EXPECT_EQ(warnings, 0) << what << ": every array is passed on";
@@ -166,8 +168,7 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
         const vtkIdType id = ids->GetValue(s);
         const vtkVariant v = variants->GetValue(s);
         wrong += names->GetValue(s) != NameOf(id) || !SameVariant(v, VariantOf(id)) ||
-            bits->GetValue(2 * s) != BitOf(id) ||
-            bits->GetValue(2 * s + 1) != 1 - BitOf(id)
+            bits->GetValue(2 * s) != BitOf(id) || bits->GetValue(2 * s + 1) != 1 - BitOf(id)
           ? 1
           : 0;
         double p[3];
@@ -210,7 +211,8 @@ TEST(DistributedArrays, ArraysShorterThanThePointsAreDroppedOnBothPaths)
   {
     for (bool distributed : { false, true })
     {
-      const std::string what = "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
+      const std::string what =
+        "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
       int warnings = 0;
       vtkSmartPointer<vtkPolyData> out = SimplifyTo300(input, mode, distributed, warnings);
       EXPECT_EQ(out->GetNumberOfPoints(), 300) << what;

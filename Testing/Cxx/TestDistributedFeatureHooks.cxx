@@ -44,7 +44,7 @@ asmcore::SimplifyParameters FeatureParameters()
   asmcore::SimplifyParameters p;
   p.NumberOfSamples = 4000;
   p.SamplesPerCell = 2.0;
-  p.FillHoles = false; // (see HoleFillingOverSlabs)
+  p.FillHoles = false;         // (see HoleFillingOverSlabs)
   p.BoundSnappedHoles = false; // likewise (taken after the run, over all processes)
   p.FinalLloydIterations = 0;  // (see FinalStepsOverSlabs)
   return p;
@@ -69,7 +69,8 @@ void TakeOwnersSamples(const std::vector<double>& all, const std::vector<std::ui
     {
       const auto c = static_cast<std::size_t>(it - keys.begin());
       ASSERT_EQ(start[c + 1] - start[c], n) << "the same samples in every copy of a cell";
-      std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(at), 3 * n, positions.begin() + 3 * start[c]);
+      std::copy_n(
+        all.begin() + static_cast<std::ptrdiff_t>(at), 3 * n, positions.begin() + 3 * start[c]);
     }
     at += static_cast<std::size_t>(3 * n);
   }
@@ -151,7 +152,8 @@ bool SlabsGiveTheSerialSamples(asmcore::SimplifyParameters p, int slabs, Index p
             {
               mine.insert(mine.end(),
                 { static_cast<double>(keys[c]), static_cast<double>(start[c + 1] - start[c]) });
-              mine.insert(mine.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
+              mine.insert(
+                mine.end(), positions.begin() + 3 * start[c], positions.begin() + 3 * start[c + 1]);
             }
           }
           shared.Meet(part, mine);
@@ -200,7 +202,8 @@ void CheckOrder(asmcore::SimplifyParameters p)
     {
       for (int c = 0; c < 3; ++c)
       {
-        ASSERT_NEAR(shuffled[i][c], reference[i][c], tolerance) << "seed " << seed << ", sample " << i;
+        ASSERT_NEAR(shuffled[i][c], reference[i][c], tolerance)
+          << "seed " << seed << ", sample " << i;
       }
       ASSERT_EQ(shuffled[i][4], reference[i][4]) << "seed " << seed << ", sample " << i;
     }
@@ -364,10 +367,10 @@ TEST(DistributedFeatureHooks, OptionCombinationsOverSlabs)
       << p.SparseCellKeyPoints << " cover " << p.CoverEveryCell << " reserve "
       << p.ReserveFreeSample << " input points " << p.InputPointSamples << " radius "
       << p.KeyPointRadius << " prominence " << p.KeyPointProminence << " exponent "
-      << p.BudgetExponent << " lloyd " << p.LloydIterations << " cross "
-      << p.CrossCellIterations << " final " << p.FinalLloydIterations << " covering "
-      << p.CoveringRounds << " fraction " << p.HoleFillFraction << " weight "
-      << p.LloydVariationWeight << " budget " << p.VariationBudget << " cap " << p.VariationCap);
+      << p.BudgetExponent << " lloyd " << p.LloydIterations << " cross " << p.CrossCellIterations
+      << " final " << p.FinalLloydIterations << " covering " << p.CoveringRounds << " fraction "
+      << p.HoleFillFraction << " weight " << p.LloydVariationWeight << " budget "
+      << p.VariationBudget << " cap " << p.VariationCap);
     EXPECT_TRUE(SlabsGiveTheSerialSamples(p, 4, 50000, true));
   }
 }
@@ -427,8 +430,8 @@ TEST(DistributedFeatureHooks, ResultOnALatticeWithDuplicatesDoesNotDependOnPoint
     for (asmcore::SimplifyMode mode :
       { asmcore::SimplifyMode::FeaturePreserving, asmcore::SimplifyMode::Paper })
     {
-      SCOPED_TRACE(::testing::Message() << "variant " << variant
-                                        << (mode == asmcore::SimplifyMode::Paper ? " paper" : " feature"));
+      SCOPED_TRACE(::testing::Message()
+        << "variant " << variant << (mode == asmcore::SimplifyMode::Paper ? " paper" : " feature"));
       asmcore::SimplifyParameters p;
       p.NumberOfSamples = 2000;
       p.Mode = mode;
@@ -451,7 +454,8 @@ TEST(DistributedFeatureHooks, ResultOnALatticeWithDuplicatesDoesNotDependOnPoint
           {
             ASSERT_NEAR(other[i][c], reference[i][c], 1e-8) << "seed " << seed << ", sample " << i;
           }
-          ASSERT_EQ(other[i][3], reference[i][3]) << "seed " << seed << ", sample " << i << ": size";
+          ASSERT_EQ(other[i][3], reference[i][3])
+            << "seed " << seed << ", sample " << i << ": size";
           ASSERT_EQ(other[i][4], reference[i][4]) << "seed " << seed << ", sample " << i << ": key";
         }
       }

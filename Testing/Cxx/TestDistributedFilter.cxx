@@ -14,8 +14,8 @@
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkPointData.h"
-#include "vtkSOADataArrayTemplate.h"
 #include "vtkSMPTools.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -106,7 +106,8 @@ TEST(DistributedFilter, DuplicateGhostPointsAreSkipped)
   asmtest::Cloud withCopies = cloud;
   for (std::size_t i = 0; i < cloud.size() / 3; i += 3)
   {
-    withCopies.insert(withCopies.end(), { cloud[3 * i] + 1e-3, cloud[3 * i + 1], cloud[3 * i + 2] });
+    withCopies.insert(
+      withCopies.end(), { cloud[3 * i] + 1e-3, cloud[3 * i + 1], cloud[3 * i + 2] });
   }
   vtkSmartPointer<vtkPolyData> ghosted = asmtest::ToPolyData(withCopies);
   vtkNew<vtkUnsignedCharArray> ghosts;
@@ -212,9 +213,8 @@ TEST(DistributedFilter, ExactDuplicatesGiveTheirFirstValuesWhateverTheOrder)
       {
         for (vtkPolyData* input : inputs)
         {
-          vtkSmartPointer<vtkASMSimplify> asm_ = distributed
-            ? DistributedFilter(mode)
-            : vtkSmartPointer<vtkASMSimplify>::New();
+          vtkSmartPointer<vtkASMSimplify> asm_ =
+            distributed ? DistributedFilter(mode) : vtkSmartPointer<vtkASMSimplify>::New();
           asm_->SetMode(mode);
           asm_->SetSnapToInputPoints(snap);
           asm_->SetTargetModeToNumberOfOutputPoints();
@@ -226,8 +226,8 @@ TEST(DistributedFilter, ExactDuplicatesGiveTheirFirstValuesWhateverTheOrder)
       }
       const std::string what = "mode " + std::to_string(mode) + (snap ? ", snapped" : "");
       ASSERT_EQ(runs[0].size(), 300u) << what;
-      const auto fives = std::count_if(
-        runs[0].begin(), runs[0].end(), [](const Row& r) { return r[3] == 5.0; });
+      const auto fives =
+        std::count_if(runs[0].begin(), runs[0].end(), [](const Row& r) { return r[3] == 5.0; });
       EXPECT_EQ(fives, 300) << what;
       for (std::size_t r = 1; r < runs.size(); ++r)
       {
@@ -365,7 +365,8 @@ TEST(DistributedFilter, StructureOfArraysGivesTheSameOutput)
     {
       for (int c = 0; c < 3; ++c)
       {
-        ASSERT_EQ(ca->GetComponent(i, c), cb->GetComponent(i, c)) << "mode " << mode << " point " << i;
+        ASSERT_EQ(ca->GetComponent(i, c), cb->GetComponent(i, c))
+          << "mode " << mode << " point " << i;
       }
     }
   }

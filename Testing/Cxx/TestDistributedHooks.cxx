@@ -27,8 +27,8 @@ std::vector<std::array<double, 4>> Sorted(const asmcore::SimplifyResult& r)
     r, [](const asmcore::Sample& s, double* more) { more[0] = static_cast<double>(s.CoreSize); });
 }
 
-void CheckSplit(asmcore::WeightMode weight, const asmtest::Cloud& cloud = asmtest::Sphere(6000, 2.0, 11),
-  Index count = 701)
+void CheckSplit(asmcore::WeightMode weight,
+  const asmtest::Cloud& cloud = asmtest::Sphere(6000, 2.0, 11), Index count = 701)
 {
   const std::vector<Index> ids = asmtest::AllIds(cloud);
   asmcore::SimplifyParameters p;
@@ -42,8 +42,8 @@ void CheckSplit(asmcore::WeightMode weight, const asmtest::Cloud& cloud = asmtes
   // in key order, CellShares, ApportionBudget.
   const asmtest::GlobalCells cells(cloud, ids, serial.CellSize);
   const asmcore::GridSpec& spec = cells.Spec;
-  const std::vector<Index> budget =
-    asmcore::ApportionBudget(asmcore::CellShares(cells.Capacity, cells.Variation, p), cells.Capacity, count);
+  const std::vector<Index> budget = asmcore::ApportionBudget(
+    asmcore::CellShares(cells.Capacity, cells.Variation, p), cells.Capacity, count);
   const std::map<std::uint64_t, Index> budgetOf = cells.ByKey(budget);
   const double* centroid = cells.Centroid;
 
@@ -129,7 +129,8 @@ TEST(DistributedHooks, GivenCellsAreTakenAsTheGrid)
 {
   const asmtest::Cloud cloud = asmtest::Sphere(5000, 2.0, 7);
   const std::vector<Index> ids = asmtest::AllIds(cloud);
-  const asmcore::GridSpec spec = asmcore::GridSpec::Make(asmcore::ComputeBounds(cloud.data(), ids), 0.35);
+  const asmcore::GridSpec spec =
+    asmcore::GridSpec::Make(asmcore::ComputeBounds(cloud.data(), ids), 0.35);
   const asmcore::CellGrid grouped = asmcore::BuildCellGrid(cloud.data(), ids, spec);
   ASSERT_GT(grouped.NumberOfCells(), 20);
   // The points copied in cell order, as a distributed run holds them.

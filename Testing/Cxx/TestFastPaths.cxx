@@ -28,7 +28,8 @@ using asmtest::UnevenTwoThreads;
 namespace
 {
 // The grid by its definition: (key, id) pairs sorted.
-asmcore::CellGrid ReferenceGrid(const double* xyz, asmcore::IdView ids, const asmcore::GridSpec& spec)
+asmcore::CellGrid ReferenceGrid(
+  const double* xyz, asmcore::IdView ids, const asmcore::GridSpec& spec)
 {
   std::vector<std::pair<std::uint64_t, Index>> keyed;
   for (Index id : ids)
@@ -106,7 +107,8 @@ TEST(FastPaths, GridMatchesDefinitionOnBitmapAndHashPaths)
       reference.NumberOfCells());
     // The keys themselves, ascending (distributed runs send them around).
     EXPECT_EQ(asmcore::OccupiedCellKeys(c.data(), twice, spec), reference.CellKey);
-    EXPECT_EQ(asmcore::OccupiedCellKeys(c.data(), ids, spec, UnevenTwoThreads()), reference.CellKey);
+    EXPECT_EQ(
+      asmcore::OccupiedCellKeys(c.data(), ids, spec, UnevenTwoThreads()), reference.CellKey);
   }
 }
 
@@ -157,7 +159,8 @@ TEST(FastPaths, IdViewsOfEitherListGiveTheSameGrid)
   EXPECT_EQ(std::vector<Index>(all.begin(), all.end()), ids);
   EXPECT_EQ(all[4321], 4321);
   EXPECT_FALSE(asmcore::IdView(ids).IsIdentity());
-  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), all, spec, UnevenTwoThreads()), reference);  // A range stands for first ... first + n - 1 (a cell's slots in slot
+  ExpectSameGrid(asmcore::BuildCellGrid(c.data(), all, spec, UnevenTwoThreads()),
+    reference); // A range stands for first ... first + n - 1 (a cell's slots in slot
   // order: CellIds), and the frame over it is the frame over the listed ids.
   const asmcore::IdView range = asmcore::IdView::Range(1000, 2000);
   ASSERT_FALSE(range.IsIdentity());
@@ -226,14 +229,16 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
     std::sort(t.begin(), t.end());
     return t;
   };
-  const asmcore::PointArray<double> whole = asmcore::CellSizeSubsample(c.data(), ids, 300000.0, target);
+  const asmcore::PointArray<double> whole =
+    asmcore::CellSizeSubsample(c.data(), ids, 300000.0, target);
   ASSERT_GT(whole.size(), 3u * 300000 / 40); // about one point in 7 (>= 1 in 4 * 2)
   ASSERT_LT(whole.size(), 3u * 300000 / 4);
   std::shuffle(ids.begin(), ids.end(), std::mt19937_64(3));
   const std::vector<Index> partA(ids.begin(), ids.begin() + 120000);
   const std::vector<Index> partB(ids.begin() + 120000, ids.end());
   asmcore::PointArray<double> parts = asmcore::CellSizeSubsample(c.data(), partA, 300000.0, target);
-  const asmcore::PointArray<double> b = asmcore::CellSizeSubsample(c.data(), partB, 300000.0, target, UnevenTwoThreads());
+  const asmcore::PointArray<double> b =
+    asmcore::CellSizeSubsample(c.data(), partB, 300000.0, target, UnevenTwoThreads());
   parts.insert(parts.end(), b.begin(), b.end());
   EXPECT_EQ(sortedTriples(parts), sortedTriples(whole));
   // Small clouds are searched on all points.
@@ -245,19 +250,23 @@ TEST(FastPaths, CellSizeSubsampleIsIndependentOfOrderAndPartition)
   const auto bounds = asmcore::ComputeBounds(c.data(), all);
   std::vector<Index> subsetIds(whole.size() / 3);
   std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
-  const double start = asmcore::AutomaticCellSize(bounds, target, false, [&](const asmcore::GridSpec& spec) {
-    return static_cast<double>(asmcore::CountOccupiedCells(whole.data(), subsetIds, spec));
-  });
-  const double distributed = asmcore::AutomaticCellSize(bounds, target, false,
+  const double start =
+    asmcore::AutomaticCellSize(bounds, target, false, [&](const asmcore::GridSpec& spec) {
+      return static_cast<double>(asmcore::CountOccupiedCells(whole.data(), subsetIds, spec));
+    });
+  const double distributed = asmcore::AutomaticCellSize(
+    bounds, target, false,
     [&](const asmcore::GridSpec& spec) {
       return static_cast<double>(asmcore::CountOccupiedCells(c.data(), all, spec));
     },
     start);
   EXPECT_EQ(asmcore::AutomaticCellSize(c.data(), all, bounds, target), distributed);
-  EXPECT_EQ(asmcore::BuildAutomaticCellGrid(c.data(), all, bounds, target).Spec.CellSize, distributed);
+  EXPECT_EQ(
+    asmcore::BuildAutomaticCellGrid(c.data(), all, bounds, target).Spec.CellSize, distributed);
   // The grid built during the search is the grid of that cell size.
   const asmcore::CellGrid built = asmcore::BuildAutomaticCellGrid(c.data(), all, bounds, target);
-  const asmcore::CellGrid plain = asmcore::BuildCellGrid(c.data(), all, asmcore::GridSpec::Make(bounds, distributed));
+  const asmcore::CellGrid plain =
+    asmcore::BuildCellGrid(c.data(), all, asmcore::GridSpec::Make(bounds, distributed));
   EXPECT_EQ(built.CellKey, plain.CellKey);
   EXPECT_EQ(built.CellStart, plain.CellStart);
   EXPECT_EQ(built.Order, plain.Order);
@@ -274,7 +283,8 @@ TEST(FastPaths, CellNeighborsAreTheDefinition)
   const auto bounds = asmcore::ComputeBounds(c.data(), ids);
   for (double h : { 0.15, 0.5, 3.0 })
   {
-    const asmcore::CellGrid grid = asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, h));
+    const asmcore::CellGrid grid =
+      asmcore::BuildCellGrid(c.data(), ids, asmcore::GridSpec::Make(bounds, h));
     const asmcore::CellNeighborTable table = asmcore::BuildCellNeighbors(grid, UnevenTwoThreads());
     for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
     {
@@ -282,12 +292,14 @@ TEST(FastPaths, CellNeighborsAreTheDefinition)
       grid.Spec.Unpack(grid.CellKey[cell], ijk);
       for (int k = 0; k < 27; ++k)
       {
-        const std::int64_t n[3] = { ijk[0] + k % 3 - 1, ijk[1] + (k / 3) % 3 - 1, ijk[2] + k / 9 - 1 };
+        const std::int64_t n[3] = { ijk[0] + k % 3 - 1, ijk[1] + (k / 3) % 3 - 1,
+          ijk[2] + k / 9 - 1 };
         Index expected = -1;
         if (n[0] >= 0 && n[1] >= 0 && n[2] >= 0 && n[0] < grid.Spec.Dims[0] &&
           n[1] < grid.Spec.Dims[1] && n[2] < grid.Spec.Dims[2])
         {
-          const std::uint64_t key = (std::uint64_t(n[2]) << 42) | (std::uint64_t(n[1]) << 21) | std::uint64_t(n[0]);
+          const std::uint64_t key =
+            (std::uint64_t(n[2]) << 42) | (std::uint64_t(n[1]) << 21) | std::uint64_t(n[0]);
           const auto it = std::find(grid.CellKey.begin(), grid.CellKey.end(), key);
           expected = it == grid.CellKey.end() ? -1 : static_cast<Index>(it - grid.CellKey.begin());
         }

@@ -157,8 +157,8 @@ TEST(FastPaths, PaperModeJoinsUnclaimedPointsToTheNearestSample)
     double CellSize;
     Index Outliers; // joined points farther than half a cell from their sample, at least
   };
-  for (const Case& run : { Case{ &sphere, 400, 0.0, 3 }, Case{ &sphere, 1000, 0.0, 3 },
-         Case{ &sheet, 3000, 1.0, 0 } })
+  for (const Case& run :
+    { Case{ &sphere, 400, 0.0, 3 }, Case{ &sphere, 1000, 0.0, 3 }, Case{ &sheet, 3000, 1.0, 0 } })
   {
     const Cloud& c = *run.Points;
     const auto ids = AllIds(c);
@@ -217,7 +217,8 @@ TEST(FastPaths, PaperModeJoinsUnclaimedPointsToTheNearestSample)
     {
       const asmcore::Sample& sample = r.Samples[ownerOf[o]];
       EXPECT_EQ(std::count(r.Members.begin() + sample.MemberBegin,
-                  r.Members.begin() + sample.MemberBegin + sample.CoreSize, o), 0)
+                  r.Members.begin() + sample.MemberBegin + sample.CoreSize, o),
+        0)
         << "point " << o << " placed no sample";
     }
   }
@@ -272,13 +273,15 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
   }
   std::vector<Index> order(static_cast<std::size_t>(count));
   std::iota(order.begin(), order.end(), Index(0));
-  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return ownerOf[a] < ownerOf[b]; });
+  std::stable_sort(
+    order.begin(), order.end(), [&](Index a, Index b) { return ownerOf[a] < ownerOf[b]; });
   asmcore::SampleSet after;
   after.Start.assign(static_cast<std::size_t>(cells) + 1, 0);
   std::vector<char> moved(static_cast<std::size_t>(count), 0);
   for (Index s = 0; s < count; ++s)
   {
-    after.Position.insert(after.Position.end(), position.begin() + 3 * order[s], position.begin() + 3 * order[s] + 3);
+    after.Position.insert(
+      after.Position.end(), position.begin() + 3 * order[s], position.begin() + 3 * order[s] + 3);
     after.Fixed.push_back(0);
     ++after.Start[ownerOf[order[s]] + 1];
     moved[s] = order[s] % 17 == 0 ? 1 : 0;
@@ -286,7 +289,8 @@ TEST(FastPaths, UpdateAssignmentMatchesAFreshAssignment)
   std::partial_sum(after.Start.begin(), after.Start.end(), after.Start.begin());
   ASSERT_GT(after.Start[large + 1] - after.Start[large], asmcore::LargeCellBudget);
   asmcore::AssignToSamples(c.data(), grid, neighbors, after, check, {});
-  asmcore::UpdateAssignment(c.data(), grid, neighbors, after, order, moved, assign, UnevenTwoThreads());
+  asmcore::UpdateAssignment(
+    c.data(), grid, neighbors, after, order, moved, assign, UnevenTwoThreads());
   EXPECT_EQ(assign, check);
   Index changed = 0;
   for (Index i = 0; i < static_cast<Index>(check.size()); ++i)
@@ -347,8 +351,8 @@ TEST(FastPaths, SurfaceDistancesAreTheDefinitions)
     {
       near[j] = ranked[j].second;
     }
-    const asmcore::CellFrame fit =
-      asmcore::ComputeCellFrame(surface.data(), asmcore::IdView(near.data(), static_cast<std::size_t>(k)));
+    const asmcore::CellFrame fit = asmcore::ComputeCellFrame(
+      surface.data(), asmcore::IdView(near.data(), static_cast<std::size_t>(k)));
     // (The closed-form eigensolver of the metric agrees with ComputeCellFrame's
     // iterative one to rounding.)
     const double definition =
@@ -395,7 +399,8 @@ TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)
       asmcore::SimplifyParameters parameters;
       parameters.Mode = mode;
       parameters.NumberOfSamples = static_cast<Index>(ids.size() / 40);
-      const std::string what = std::string(mode == asmcore::SimplifyMode::Paper ? "paper" : "default") +
+      const std::string what =
+        std::string(mode == asmcore::SimplifyMode::Paper ? "paper" : "default") +
         (listed ? ", listed ids" : ", identity");
       const asmcore::SimplifyResult reference =
         asmcore::Simplify(widened.data(), ids, nullptr, parameters);
@@ -429,10 +434,10 @@ TEST(FastPaths, FloatCoordinatesReadInPlaceGiveTheDoubleResult)
     queries.insert(queries.end(), { widened[i] + 1e-3, widened[i + 1], widened[i + 2] });
   }
   const auto nq = static_cast<Index>(queries.size() / 3);
-  const auto a = asmcore::EstimateCurvature(floats.data(), ids, fromFloats, queries.data(), nq,
-    nullptr, 0, UnevenTwoThreads());
-  const auto b = asmcore::EstimateCurvature(widened.data(), ids, fromDoubles, queries.data(), nq,
-    nullptr, 0, {});
+  const auto a = asmcore::EstimateCurvature(
+    floats.data(), ids, fromFloats, queries.data(), nq, nullptr, 0, UnevenTwoThreads());
+  const auto b = asmcore::EstimateCurvature(
+    widened.data(), ids, fromDoubles, queries.data(), nq, nullptr, 0, {});
   ASSERT_EQ(a.size(), static_cast<std::size_t>(nq));
   ASSERT_EQ(b.size(), a.size());
   Index fits = 0;

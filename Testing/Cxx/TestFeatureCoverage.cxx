@@ -36,8 +36,8 @@ double LargestHole(const Cloud& c, const asmcore::SimplifyResult& r)
     double best = 1e300;
     for (const auto& s : r.Samples)
     {
-      best = std::min(best,
-        std::hypot(c[i] - s.Position[0], c[i + 1] - s.Position[1], c[i + 2] - s.Position[2]));
+      best = std::min(
+        best, std::hypot(c[i] - s.Position[0], c[i + 1] - s.Position[1], c[i + 2] - s.Position[2]));
     }
     hole = std::max(hole, best);
   }
@@ -74,8 +74,7 @@ TEST(FeatureCoverage, MinimaxCentreIsNearTheSmallestBall)
   // from a vertex; the radius returned is the reach from the centre
   // returned, at least the exact one and within 5 % of it.
   const double t = 1.0 / std::sqrt(2.0);
-  const std::vector<std::pair<Cloud, double>> cases = {
-    { { 0, 0, 0, 2, 0, 0 }, 1.0 },
+  const std::vector<std::pair<Cloud, double>> cases = { { { 0, 0, 0, 2, 0, 0 }, 1.0 },
     { { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 }, std::sqrt(2.0) },
     { { 1, 0, -t, -1, 0, -t, 0, 1, t, 0, -1, t }, std::sqrt(6.0) / 2.0 } };
   for (const auto& [points, exact] : cases)
@@ -144,8 +143,10 @@ TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
     EXPECT_GT(moved, 0);
     EXPECT_LT(moved, target / 10) << "only the widest clusters' samples move";
     // SnapToInputPoints is the user's demand for input points: nothing moves.
-    const auto snapped =
-      SimplifyWith(cloud, target, [](auto& p) { p.Snap = true; p.BoundSnappedHoles = true; });
+    const auto snapped = SimplifyWith(cloud, target, [](auto& p) {
+      p.Snap = true;
+      p.BoundSnappedHoles = true;
+    });
     for (const auto& s : snapped.Samples)
     {
       EXPECT_TRUE(IsInputPoint(cloud, s.Position));
@@ -237,7 +238,7 @@ TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
   auto rounds = [&](int k) {
     return SimplifyWith(sphere.Points, target, [k](auto& p) {
       p.CoveringRounds = k;
-      p.FillHoles = false;          // the refinement alone
+      p.FillHoles = false; // the refinement alone
       p.BoundSnappedHoles = false;
       p.LloydVariationWeight = 0.0; // (the weighted final Lloyd steps crowd creases, not holes)
     });
@@ -303,7 +304,8 @@ TEST(FeatureCoverage, FeatureSamplesPerCellSetsTheCellSize)
 {
   const Shape box = Box(40000);
   const double fine = SimplifyWith(box.Points, 4000).CellSize;
-  const double coarse = SimplifyWith(box.Points, 4000, [](auto& p) { p.FeatureSamplesPerCell = 8.0; }).CellSize;
+  const double coarse =
+    SimplifyWith(box.Points, 4000, [](auto& p) { p.FeatureSamplesPerCell = 8.0; }).CellSize;
   // About sqrt(2) on a surface: half the samples per cell, half the area.
   EXPECT_LT(fine, 0.85 * coarse);
   EXPECT_GT(fine, 0.55 * coarse);
@@ -321,7 +323,8 @@ TEST(FeatureCoverage, TipAloneInASparseCellIsAKeyPoint)
   // for a frame: only the sparse-cell rule makes it a key point.
   const Shape cone = Cone(40000);
   auto apexDistance = [&](bool sparse) {
-    const auto r = SimplifyWith(cone.Points, 4000, [sparse](auto& p) { p.SparseCellKeyPoints = sparse; });
+    const auto r =
+      SimplifyWith(cone.Points, 4000, [sparse](auto& p) { p.SparseCellKeyPoints = sparse; });
     double best = 1e300;
     bool key = false;
     for (const auto& s : r.Samples)
@@ -457,7 +460,8 @@ TEST(FeatureCoverage, FinalLloydIterationsTightenTheClusters)
       double best = 1e300;
       for (const auto& s : r.Samples)
       {
-        const double dx = c[i] - s.Position[0], dy = c[i + 1] - s.Position[1], dz = c[i + 2] - s.Position[2];
+        const double dx = c[i] - s.Position[0], dy = c[i + 1] - s.Position[1],
+                     dz = c[i + 2] - s.Position[2];
         best = std::min(best, dx * dx + dy * dy + dz * dz);
       }
       e += best;

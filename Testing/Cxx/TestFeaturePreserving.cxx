@@ -30,14 +30,16 @@ double NearestSample(const asmcore::SimplifyResult& r, const std::array<double, 
   double best = 1e300;
   for (const auto& s : r.Samples)
   {
-    best = std::min(best, std::hypot(s.Position[0] - x[0], s.Position[1] - x[1], s.Position[2] - x[2]));
+    best =
+      std::min(best, std::hypot(s.Position[0] - x[0], s.Position[1] - x[1], s.Position[2] - x[2]));
   }
   return best;
 }
 
 // Whether the members of sample s are connected when points closer than
 // `link` are linked.
-bool Connected(const Cloud& c, const asmcore::SimplifyResult& r, const asmcore::Sample& s, double link)
+bool Connected(
+  const Cloud& c, const asmcore::SimplifyResult& r, const asmcore::Sample& s, double link)
 {
   const Index* m = r.Members.data() + s.MemberBegin;
   std::vector<char> seen(static_cast<std::size_t>(s.ClusterSize), 0);
@@ -69,7 +71,8 @@ TEST(FeaturePreserving, TiltedPlaneCutByTheGridHasNoKeyPoints)
 {
   const Shape plane = TiltedPlane(40000);
   // The literal reading takes every cell's highest and lowest points.
-  const auto paper = SimplifyWith(plane.Points, 2000, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; });
+  const auto paper =
+    SimplifyWith(plane.Points, 2000, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; });
   EXPECT_GT(paper.NumberOfKeyPoints, 200);
   // Default: none inside; only at the plane's outer border (a scan border
   // is a real extreme along the in-plane axes).
@@ -84,10 +87,12 @@ TEST(FeaturePreserving, TiltedPlaneCutByTheGridHasNoKeyPoints)
     }
   }
   // Without the in-plane extremes: no key point at all.
-  const auto noBorder = SimplifyWith(plane.Points, 2000, [](auto& p) { p.InPlaneKeyPoints = false; });
+  const auto noBorder =
+    SimplifyWith(plane.Points, 2000, [](auto& p) { p.InPlaneKeyPoints = false; });
   EXPECT_EQ(noBorder.NumberOfKeyPoints, 0);
   // Without the Lemma 2 check the grid cuts come back.
-  const auto unchecked = SimplifyWith(plane.Points, 2000, [](auto& p) { p.ValidateKeyPoints = false; });
+  const auto unchecked =
+    SimplifyWith(plane.Points, 2000, [](auto& p) { p.ValidateKeyPoints = false; });
   EXPECT_GT(unchecked.NumberOfKeyPoints, 200);
 }
 
@@ -122,7 +127,10 @@ TEST(FeaturePreserving, SparseCellsAreNotLeftEmpty)
   const Index target = 1000; // about 125 cells, far more than 5
   for (bool cover : { true, false })
   {
-    const auto r = SimplifyWith(c, target, [&](auto& p) { p.CoverEveryCell = cover; p.BudgetExponent = 1.0; });
+    const auto r = SimplifyWith(c, target, [&](auto& p) {
+      p.CoverEveryCell = cover;
+      p.BudgetExponent = 1.0;
+    });
     ASSERT_EQ(static_cast<Index>(r.Samples.size()), target);
     int covered = 0;
     for (const auto& p : lonely)
@@ -149,7 +157,8 @@ TEST(FeaturePreserving, MiddleClustersAreConnected)
 {
   const int n = 150;
   const double spacing = 2.0 / (n - 1);
-  const Cloud c = GridSurface(n, 1.0, [](double x, double y) { return 0.15 * std::sin(3 * x) * std::cos(2 * y); });
+  const Cloud c = GridSurface(
+    n, 1.0, [](double x, double y) { return 0.15 * std::sin(3 * x) * std::cos(2 * y); });
   for (Index target : { 300, 1200 })
   {
     const auto r = SimplifyWith(c, target);
@@ -159,7 +168,8 @@ TEST(FeaturePreserving, MiddleClustersAreConnected)
     {
       ASSERT_GE(s.ClusterSize, 1);
       members += s.ClusterSize;
-      EXPECT_TRUE(Connected(c, r, s, 1.5 * spacing)) << "sample at " << s.Position[0] << " " << s.Position[1];
+      EXPECT_TRUE(Connected(c, r, s, 1.5 * spacing))
+        << "sample at " << s.Position[0] << " " << s.Position[1];
     }
     EXPECT_EQ(members, n * n) << "the clusters partition the points";
   }
@@ -174,11 +184,13 @@ TEST(FeaturePreserving, ExactCountAndMembersInEveryConfiguration)
     [](auto& p) { p.CoverEveryCell = false; }, [](auto& p) { p.BudgetExponent = 1.0; },
     [](auto& p) { p.LloydIterations = 0; }, [](auto& p) { p.CrossCellIterations = 0; },
     [](auto& p) { p.FillHoles = false; }, [](auto& p) { p.Snap = true; },
-    [](auto& p) { p.InputPointSamples = false; }, [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
+    [](auto& p) { p.InputPointSamples = false; },
+    [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; },
     [](auto& p) { p.FeatureSamplesPerCell = 8.0; }, [](auto& p) { p.VariationBudget = 0.0; },
     [](auto& p) { p.CoveringRounds = 2; }, [](auto& p) { p.SparseCellKeyPoints = false; },
     [](auto& p) { p.BoundSnappedHoles = false; }, [](auto& p) { p.VariationCap = 0.0; },
-    [](auto& p) { p.ReserveFreeSample = false; }, [](auto& p) { p.FinalLloydIterations = 0; } };
+    [](auto& p) { p.ReserveFreeSample = false; }, [](auto& p) { p.FinalLloydIterations = 0; }
+  };
   for (std::size_t k = 0; k < configurations.size(); ++k)
   {
     for (Index target : { 1, 7, 100, 1000, 5000, 19999, 20000 })
@@ -245,7 +257,8 @@ TEST(FeaturePreserving, EachOptionSwitchesOnItsOwnAndThreadsDoNotMatter)
     // cell; see FeatureCoverage.TipAloneInASparseCellIsAKeyPoint.)
     // (Nor ReserveFreeSample at 5 %: no cell's key points fill its budget;
     // see FeatureCoverage.ReserveFreeSampleKeepsANonKeySampleInACell.)
-    { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } } };
+    { "Paper", [](vtkASMSimplify* f) { f->SetModeToPaper(); } }
+  };
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   std::vector<std::vector<double>> results;
   for (const auto& option : options)

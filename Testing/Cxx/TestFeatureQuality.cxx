@@ -73,28 +73,32 @@ Cloud ASM(const Cloud& c, Index target, const std::function<void(asmcore::Simpli
   return out;
 }
 
-void Score(const char* input, const char* method, const Cloud& original, const asmcore::Neighbors& tree,
-  const Cloud& simplified, const std::vector<std::array<double, 3>>& features)
+void Score(const char* input, const char* method, const Cloud& original,
+  const asmcore::Neighbors& tree, const Cloud& simplified,
+  const std::vector<std::array<double, 3>>& features)
 {
   asmcore::ComparisonOptions options;
-  const auto cmp = asmcore::CompareClouds(original.data(), AllIds(original), tree, simplified.data(),
-    AllIds(simplified), options);
+  const auto cmp = asmcore::CompareClouds(
+    original.data(), AllIds(original), tree, simplified.data(), AllIds(simplified), options);
   double tip = 0.0;
   for (const auto& f : features)
   {
     double best = 1e300;
     for (std::size_t i = 0; i < simplified.size(); i += 3)
     {
-      best = std::min(best, std::hypot(simplified[i] - f[0], simplified[i + 1] - f[1], simplified[i + 2] - f[2]));
+      best = std::min(
+        best, std::hypot(simplified[i] - f[0], simplified[i + 1] - f[1], simplified[i + 2] - f[2]));
     }
     tip = std::max(tip, best);
   }
   const double d = cmp.Diagonal;
-  std::printf("%-16s %-12s %7zu  p2p %.3e  nnO %.3e  nnS %.3e  nnRMS %.3e  hole %.3e  tip %.3e\n", input,
-    method, simplified.size() / 3, cmp.PointToPlane.Mean / d, cmp.OriginalToSimplified.RMS / d,
-    cmp.SimplifiedToOriginal.RMS / d,
-    std::sqrt(0.5 * (cmp.OriginalToSimplified.RMS * cmp.OriginalToSimplified.RMS +
-                cmp.SimplifiedToOriginal.RMS * cmp.SimplifiedToOriginal.RMS)) / d,
+  std::printf("%-16s %-12s %7zu  p2p %.3e  nnO %.3e  nnS %.3e  nnRMS %.3e  hole %.3e  tip %.3e\n",
+    input, method, simplified.size() / 3, cmp.PointToPlane.Mean / d,
+    cmp.OriginalToSimplified.RMS / d, cmp.SimplifiedToOriginal.RMS / d,
+    std::sqrt(0.5 *
+      (cmp.OriginalToSimplified.RMS * cmp.OriginalToSimplified.RMS +
+        cmp.SimplifiedToOriginal.RMS * cmp.SimplifiedToOriginal.RMS)) /
+      d,
     cmp.OriginalToSimplified.Max / d, tip / d);
 }
 } // namespace
@@ -137,12 +141,17 @@ TEST(FeatureQuality, DISABLED_ModesAgainstAVoxelGrid)
   features.push_back(cone.Features);
   inputs.emplace_back("box", box.Points);
   features.push_back(box.Features);
-  const std::vector<std::pair<const char*, std::function<void(asmcore::SimplifyParameters&)>>> methods = {
-    { "paper", [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } },
-    { "feature", [](auto&) {} },
-    { "nofill", [](auto& p) { p.FillHoles = false; } },
-    { "x2 fill3", [](auto& p) { p.CrossCellIterations = 2; p.HoleFillRounds = 3; } },
-  };
+  const std::vector<std::pair<const char*, std::function<void(asmcore::SimplifyParameters&)>>>
+    methods = {
+      { "paper", [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } },
+      { "feature", [](auto&) {} },
+      { "nofill", [](auto& p) { p.FillHoles = false; } },
+      { "x2 fill3",
+        [](auto& p) {
+          p.CrossCellIterations = 2;
+          p.HoleFillRounds = 3;
+        } },
+    };
   for (std::size_t k = 0; k < inputs.size(); ++k)
   {
     const Cloud& c = inputs[k].second;
@@ -172,10 +181,9 @@ TEST(FeatureQuality, DISABLED_TimeFourMillionPoints)
     Add(c, r * v[0] / l, r * v[1] / l, r * v[2] / l);
   }
   const auto ids = AllIds(c);
-  const std::vector<std::pair<const char*, std::function<void(asmcore::SimplifyParameters&)>>> methods = {
-    { "paper", [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } },
-    { "feature", [](auto&) {} },
-    { "nofill", [](auto& p) { p.FillHoles = false; } } };
+  const std::vector<std::pair<const char*, std::function<void(asmcore::SimplifyParameters&)>>>
+    methods = { { "paper", [](auto& p) { p.Mode = asmcore::SimplifyMode::Paper; } },
+      { "feature", [](auto&) {} }, { "nofill", [](auto& p) { p.FillHoles = false; } } };
   const char* only = std::getenv("ASM_TIME_ONLY");
   for (const auto& m : methods)
   {
@@ -195,6 +203,7 @@ TEST(FeatureQuality, DISABLED_TimeFourMillionPoints)
       EXPECT_EQ(r.Samples.size(), static_cast<std::size_t>(p.NumberOfSamples));
     }
     std::sort(times.begin(), times.end());
-    std::printf("%-14s median %.3f s  %.2f M points/s\n", m.first, times[times.size() / 2], n / times[times.size() / 2] / 1e6);
+    std::printf("%-14s median %.3f s  %.2f M points/s\n", m.first, times[times.size() / 2],
+      n / times[times.size() / 2] / 1e6);
   }
 }

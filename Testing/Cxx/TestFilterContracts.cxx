@@ -47,13 +47,16 @@ void ExpectSameArray(vtkAbstractArray* a, vtkAbstractArray* b, const std::string
   {
     if (da && db)
     {
-      const double x = da->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
-      const double y = db->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
+      const double x =
+        da->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
+      const double y =
+        db->GetComponent(v / a->GetNumberOfComponents(), v % a->GetNumberOfComponents());
       ASSERT_TRUE(std::memcmp(&x, &y, sizeof(double)) == 0) << what << " value " << v;
     }
     else
     {
-      ASSERT_EQ(a->GetVariantValue(v).ToString(), b->GetVariantValue(v).ToString()) << what << " value " << v;
+      ASSERT_EQ(a->GetVariantValue(v).ToString(), b->GetVariantValue(v).ToString())
+        << what << " value " << v;
     }
   }
 }
@@ -133,20 +136,24 @@ const std::vector<std::pair<std::string, Setter>>& Variants()
 {
   static const std::vector<std::pair<std::string, Setter>> variants = {
     { "defaults", [](vtkASMSimplify*) {} },
-    { "count", [](vtkASMSimplify* f) {
+    { "count",
+      [](vtkASMSimplify* f) {
         f->SetTargetModeToNumberOfOutputPoints();
         f->SetNumberOfOutputPoints(333);
       } },
-    { "snap+tolerance", [](vtkASMSimplify* f) {
+    { "snap+tolerance",
+      [](vtkASMSimplify* f) {
         f->SetSnapToInputPoints(true);
         f->SetErrorTolerance(0.01);
       } },
-    { "cell+alpha+seed", [](vtkASMSimplify* f) {
+    { "cell+alpha+seed",
+      [](vtkASMSimplify* f) {
         f->SetCellSize(0.3);
         f->SetAlpha(0.3);
         f->SetRandomSeed(9);
       } },
-    { "weight+double+nocurvature", [](vtkASMSimplify* f) {
+    { "weight+double+nocurvature",
+      [](vtkASMSimplify* f) {
         f->SetWeightMode(vtkASMSimplify::SURFACE_VARIATION_WEIGHT);
         f->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
         f->SetGenerateCurvature(false);
@@ -230,8 +237,8 @@ TEST(FilterContracts, ReExecutionEqualsAFreshRun)
     variants[b].second(fresh);
     fresh->SetInputData(input);
     fresh->Update();
-    ExpectSameData(reused->GetOutput(), fresh->GetOutput(),
-      variants[a].first + " then " + variants[b].first);
+    ExpectSameData(
+      reused->GetOutput(), fresh->GetOutput(), variants[a].first + " then " + variants[b].first);
   }
   // A modified input (same object) re-executes too.
   vtkNew<vtkASMSimplify> filter;
@@ -355,7 +362,8 @@ TEST(FilterContracts, SequentialLoopsRunInPieces)
   const asmcore::Execution sequential;
   auto piecesOf = [&](asmcore::Index begin, asmcore::Index end) {
     std::vector<std::pair<asmcore::Index, asmcore::Index>> pieces;
-    sequential.Run(begin, end, [&](asmcore::Index b, asmcore::Index e) { pieces.emplace_back(b, e); });
+    sequential.Run(
+      begin, end, [&](asmcore::Index b, asmcore::Index e) { pieces.emplace_back(b, e); });
     return pieces;
   };
   using Pieces = std::vector<std::pair<asmcore::Index, asmcore::Index>>;

@@ -45,8 +45,8 @@ Cloud GridSurface(int n, double half, F f)
 }
 
 /// n random points on a sphere of the given radius and centre.
-inline Cloud Sphere(std::size_t n, double radius, unsigned seed = 7, double cx = 0, double cy = 0,
-  double cz = 0)
+inline Cloud Sphere(
+  std::size_t n, double radius, unsigned seed = 7, double cx = 0, double cy = 0, double cz = 0)
 {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0.0, 1.0);

@@ -142,11 +142,12 @@ TEST(HoleFilling, RankThresholdKeepsTheBestAndLittleElse)
         all.insert(all.end(), lists[q].begin(), lists[q].end());
       }
       const double t = asmcore::holes::RankThreshold(sampled, stride, keep);
-      const auto reach = static_cast<Index>(
-        std::count_if(all.begin(), all.end(), [t](double v) { return v >= t; }));
+      const auto reach =
+        static_cast<Index>(std::count_if(all.begin(), all.end(), [t](double v) { return v >= t; }));
       const auto total = static_cast<Index>(all.size());
       EXPECT_GE(reach, std::min(keep, total)) << processes << " " << keep;
-      EXPECT_LE(reach, std::min(total, keep + (processes + 1) * stride)) << processes << " " << keep;
+      EXPECT_LE(reach, std::min(total, keep + (processes + 1) * stride))
+        << processes << " " << keep;
       if (keep > total)
       {
         EXPECT_EQ(t, -std::numeric_limits<double>::infinity());
@@ -249,10 +250,11 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
     {
       const Index old = serialOrder[s];
       EXPECT_EQ(serial.Fixed[s], samples.Fixed[old]);
-      const bool stayed = std::equal(serial.Position.begin() + 3 * s, serial.Position.begin() + 3 * s + 3,
-        samples.Position.begin() + 3 * old);
-      const Index oldCell = static_cast<Index>(
-        std::upper_bound(samples.Start.begin(), samples.Start.end(), old) - samples.Start.begin() - 1);
+      const bool stayed = std::equal(serial.Position.begin() + 3 * s,
+        serial.Position.begin() + 3 * s + 3, samples.Position.begin() + 3 * old);
+      const Index oldCell =
+        static_cast<Index>(std::upper_bound(samples.Start.begin(), samples.Start.end(), old) -
+          samples.Start.begin() - 1);
       const std::uint64_t key = grid.Spec.KeyOf(serial.Position.data() + 3 * s);
       const Index newCell = static_cast<Index>(
         std::lower_bound(grid.CellKey.begin(), grid.CellKey.end(), key) - grid.CellKey.begin());

@@ -8,13 +8,13 @@
 #include "vtkASMSimplify.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkIntArray.h"
-#include "vtkPoints.h"
-#include "vtkSOADataArrayTemplate.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkKeyPointError.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSOADataArrayTemplate.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
@@ -188,8 +188,8 @@ TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
   // 1 m rounding must not take them away where there are some.)
   EXPECT_GE(FieldValue(out, "NumberOfKeyPoints"), 0.5 * referenceKeys);
   EXPECT_LT(FieldValue(out, "MKPE"), 0.1 * radius);
-  EXPECT_NEAR(FieldValue(out, "CellSize"), FieldValue(ref, "CellSize"),
-    0.25 * FieldValue(ref, "CellSize"));
+  EXPECT_NEAR(
+    FieldValue(out, "CellSize"), FieldValue(ref, "CellSize"), 0.25 * FieldValue(ref, "CellSize"));
 
   // Double output points keep the computed positions (no float rounding).
   FilterRun precise;
@@ -215,7 +215,8 @@ TEST(HostileInputs, OnePercentFarOutliers)
   FilterRun clean;
   clean.Count(1000);
   clean.Filter->SetModeToPaper();
-  const double cleanCell = FieldValue(clean.Execute(ToPolyData(asmtest::Sphere(20000, 1.0, 8))), "CellSize");
+  const double cleanCell =
+    FieldValue(clean.Execute(ToPolyData(asmtest::Sphere(20000, 1.0, 8))), "CellSize");
 
   // The default feature-preserving mode gives every non-empty cell a sample
   // first (CoverEveryCell), so each isolated outlier keeps one.
@@ -284,7 +285,8 @@ static_assert(std::is_same<decltype(asmcore::Sample::Representative), asmcore::I
     std::is_same<decltype(asmcore::Sample::ClusterSize), asmcore::Index>::value &&
     std::is_same<decltype(asmcore::SimplifyParameters::NumberOfSamples), asmcore::Index>::value &&
     std::is_same<asmcore::Index, asmcore::PointArray<asmcore::Index>::value_type>::value &&
-    std::is_same<asmcore::PointArray<asmcore::Index>, decltype(asmcore::SimplifyResult::Members)>::value,
+    std::is_same<asmcore::PointArray<asmcore::Index>,
+      decltype(asmcore::SimplifyResult::Members)>::value,
   "the core's ids and counts are 64-bit");
 static_assert(std::is_same<decltype(std::declval<vtkASMSimplify&>().GetNumberOfOutputPoints()),
                 vtkIdType>::value,
@@ -330,7 +332,8 @@ TEST(HostileInputs, PointIdsBeyondTwoToThe31)
   FilterRun run;
   run.Count(100);
   vtkPolyData* out = run.Execute(ToPolyData(c));
-  EXPECT_NE(vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("vtkOriginalPointIds")), nullptr);
+  EXPECT_NE(
+    vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("vtkOriginalPointIds")), nullptr);
   EXPECT_NE(vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("ClusterSize")), nullptr);
 }
 
@@ -462,15 +465,16 @@ TEST(HostileInputs, IntegerAndSplitPointArraysGiveTheDoubleResult)
   vtkNew<vtkDoubleArray> doubles;
   vtkNew<vtkIntArray> integers;
   vtkNew<vtkSOADataArrayTemplate<double>> split;
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(doubles), static_cast<vtkDataArray*>(integers),
-         static_cast<vtkDataArray*>(split) })
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(doubles),
+         static_cast<vtkDataArray*>(integers), static_cast<vtkDataArray*>(split) })
   {
     a->SetNumberOfComponents(3);
     a->SetNumberOfTuples(n);
   }
   for (vtkIdType i = 0; i < n; ++i)
   {
-    const double rounded[3] = { std::round(c[3 * i]), std::round(c[3 * i + 1]), std::round(c[3 * i + 2]) };
+    const double rounded[3] = { std::round(c[3 * i]), std::round(c[3 * i + 1]),
+      std::round(c[3 * i + 2]) };
     doubles->SetTuple(i, rounded);
     integers->SetTuple(i, rounded);
     split->SetTuple(i, rounded);

@@ -129,7 +129,8 @@ TEST(KeyPointError, MeasuresAnASMSimplification)
   EXPECT_GE(mkpe, akpe);
   EXPECT_EQ(FieldValue(out, "MKPE"), mkpe);
   EXPECT_GE(run.Figure("HausdorffDistance"), run.Figure("MaxDistanceOriginalToSimplified"));
-  EXPECT_GE(run.Figure("RMSDistanceOriginalToSimplified"), run.Figure("MeanDistanceOriginalToSimplified"));
+  EXPECT_GE(
+    run.Figure("RMSDistanceOriginalToSimplified"), run.Figure("MeanDistanceOriginalToSimplified"));
   EXPECT_LE(run.Figure("PointToPlaneMean"), run.Figure("MeanDistanceOriginalToSimplified"));
   // Centroids of 20-point clusters lie close to the bunny's surface (about
   // 15 cm across): well under a millimetre on average.
@@ -292,7 +293,8 @@ TEST(Curvature, ASMOutputOnASphereHasMeanCurvatureOneOverR)
 
 TEST(Curvature, PlaneHasZeroMeanCurvatureInBothFilters)
 {
-  auto plane = ToPolyData(GridSurface(100, 1.0, [](double x, double y) { return 0.2 * x - 0.1 * y; }));
+  auto plane =
+    ToPolyData(GridSurface(100, 1.0, [](double x, double y) { return 0.2 * x - 0.1 * y; }));
   FilterRun run;
   vtkPolyData* out = run.Execute(plane);
   vtkDataArray* h = out->GetPointData()->GetArray("MeanCurvature");

@@ -94,7 +94,8 @@ TEST(LloydVariationWeight, WeightedAssignmentSplitsWhereTheWeightedDistancesMeet
   // Factors of 1 give the plain assignment.
   const std::vector<double> ones = { 1.0, 1.0 };
   asmcore::PointArray<asmcore::SampleId> same;
-  asmcore::AssignToSamples(c.data(), gridded.Grid, gridded.Neighbors, samples, same, {}, ones.data());
+  asmcore::AssignToSamples(
+    c.data(), gridded.Grid, gridded.Neighbors, samples, same, {}, ones.data());
   EXPECT_TRUE(std::equal(plain.begin(), plain.end(), same.begin()));
 }
 
@@ -155,8 +156,8 @@ TEST(LloydVariationWeight, ClusterVariationIsZeroOnAPlaneAndLargeAcrossACrease)
   asmcore::AssignToSamples(roof.data(), gridded.Grid, gridded.Neighbors, samples, assign, {});
   const std::vector<double> serial =
     asmcore::ClusterVariations(roof.data(), gridded.Grid, gridded.Neighbors, assign, samples, {});
-  const std::vector<double> threaded = asmcore::ClusterVariations(roof.data(), gridded.Grid,
-    gridded.Neighbors, assign, samples, asmtest::UnevenTwoThreads());
+  const std::vector<double> threaded = asmcore::ClusterVariations(
+    roof.data(), gridded.Grid, gridded.Neighbors, assign, samples, asmtest::UnevenTwoThreads());
   EXPECT_EQ(serial, threaded);
   // Per cluster: its points' PCA, lambda_0 / trace; a cluster on one slope
   // is flat, one that straddles the crease is not.
@@ -208,7 +209,8 @@ TEST(LloydVariationWeight, SamplesMoveTowardsTheCrease)
   const Cloud roof = Roof(160, 9);
   const std::int64_t target = 512;
   auto nearCrease = [&](double weight) {
-    const auto r = asmtest::SimplifyWith(roof, target, [weight](auto& p) { p.LloydVariationWeight = weight; });
+    const auto r =
+      asmtest::SimplifyWith(roof, target, [weight](auto& p) { p.LloydVariationWeight = weight; });
     EXPECT_EQ(static_cast<std::int64_t>(r.Samples.size()), target);
     int near = 0;
     for (const auto& s : r.Samples)

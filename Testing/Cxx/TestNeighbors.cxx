@@ -43,8 +43,8 @@ Ranked BruteForce(const Cloud& c, asmcore::IdView ids, const double p[3],
   return all;
 }
 
-void ExpectSame(const Ranked& expected, asmcore::IdView ids,
-  const std::vector<double>& sqDist, const std::string& what)
+void ExpectSame(const Ranked& expected, asmcore::IdView ids, const std::vector<double>& sqDist,
+  const std::string& what)
 {
   ASSERT_EQ(expected.size(), ids.size()) << what;
   ASSERT_EQ(expected.size(), sqDist.size()) << what;
@@ -410,7 +410,8 @@ TEST(Neighbors, MillionIdenticalPoints)
 // root splits at the median, then ranges too large for the spare array are
 // permuted in place), points at exponentially shrinking spacings (a split
 // after split peels few points: depth), flat and thin boxes, coordinates
-// one ulp apart, a box a few denormals wide (too thin for a grid). Every answer must still be exact.
+// one ulp apart, a box a few denormals wide (too thin for a grid). Every answer must still be
+// exact.
 TEST(Neighbors, AdversarialLayoutsMatchBruteForce)
 {
   std::mt19937_64 rng(21);
@@ -491,8 +492,8 @@ TEST(Neighbors, AdversarialLayoutsMatchBruteForce)
       for (int k : { 1, 20, 100 })
       {
         tree.KNearest(q.data(), k, ids, d);
-        ExpectSame(Ranked(expected.begin(), expected.begin() + k), ids, d,
-          name + " k=" + std::to_string(k));
+        ExpectSame(
+          Ranked(expected.begin(), expected.begin() + k), ids, d, name + " k=" + std::to_string(k));
       }
       const double r = std::sqrt(expected[19].first);
       tree.Radius(q.data(), r, ids, d);

@@ -120,8 +120,8 @@ vtkSmartPointer<vtkPolyData> CloudWithEveryArrayType(int pointType = VTK_DOUBLE)
   return input;
 }
 
-const char* const IntegerArrays[] = { "char", "int8", "uint8", "int16", "uint16", "int32",
-  "uint32", "long", "ulong", "int64", "uint64", "ids" };
+const char* const IntegerArrays[] = { "char", "int8", "uint8", "int16", "uint16", "int32", "uint32",
+  "long", "ulong", "int64", "uint64", "ids" };
 } // namespace
 
 TEST(NoLostData, EveryArrayTypeIsCarried)
@@ -227,8 +227,8 @@ TEST(NoLostData, OriginalPointIdIsAClusterMember)
     const auto* last = first + s.ClusterSize;
     ASSERT_NE(std::find(first, last, s.Representative), last);
     const auto dist = [&](asmcore::Index id) {
-      return std::hypot(c[3 * id] - s.Position[0], c[3 * id + 1] - s.Position[1],
-        c[3 * id + 2] - s.Position[2]);
+      return std::hypot(
+        c[3 * id] - s.Position[0], c[3 * id + 1] - s.Position[1], c[3 * id + 2] - s.Position[2]);
     };
     for (const auto* m = first; m != last; ++m)
     {
@@ -334,8 +334,8 @@ TEST(NoLostData, ExactDuplicatesGiveTheValuesThatComeFirst)
             ? 1
             : 0;
         }
-        EXPECT_EQ(same, 200) << "expected " << expected.Name << ", " << expected.Second
-                             << "; mode " << mode << (swapped ? ", swapped" : "");
+        EXPECT_EQ(same, 200) << "expected " << expected.Name << ", " << expected.Second << "; mode "
+                             << mode << (swapped ? ", swapped" : "");
       }
     }
   }

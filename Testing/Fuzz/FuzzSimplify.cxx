@@ -126,7 +126,9 @@ void ApplyFeatureOptions(const std::uint8_t b[4], asmcore::SimplifyParameters& p
   p.CoveringRounds = (b[1] & 128) ? 2 : 0;
   const int exponent = b[2] & 15, perCell = b[2] >> 4;
   p.BudgetExponent = exponent == 0 ? 0.5 : (exponent - 1) / 14.0;
-  p.FeatureSamplesPerCell = perCell == 0 ? 4.0 : perCell == 15 ? -1.0 : std::ldexp(1.0, perCell - 7);
+  p.FeatureSamplesPerCell = perCell == 0 ? 4.0
+    : perCell == 15                      ? -1.0
+                                         : std::ldexp(1.0, perCell - 7);
   const int fraction = b[3] & 15;
   p.HoleFillFraction = fraction == 0 ? 0.02 : fraction / 30.0;
   static const double lloydWeight[4] = { 0.75, 0.0, 4.0, 100.0 };
@@ -372,8 +374,7 @@ void CheckSameResult(const asmcore::SimplifyResult& a, const asmcore::SimplifyRe
       FUZZ_CHECK(SameBits(x.Normal[c], y.Normal[c]));
     }
     FUZZ_CHECK(x.Representative == y.Representative && x.ClusterSize == y.ClusterSize &&
-      x.CoreSize == y.CoreSize &&
-      x.MemberBegin == y.MemberBegin && x.Key == y.Key);
+      x.CoreSize == y.CoreSize && x.MemberBegin == y.MemberBegin && x.Key == y.Key);
   }
   FUZZ_CHECK(SameBits(a.MKPE, b.MKPE) && SameBits(a.AKPE, b.AKPE));
 }
@@ -389,8 +390,8 @@ void CheckCompare(const Case& k, asmcore::IdView ids, const asmcore::SimplifyRes
   {
     simplified.insert(simplified.end(), s.Position, s.Position + 3);
   }
-  const std::vector<Index> sids = asmcore::FinitePointIds(
-    simplified.data(), static_cast<Index>(r.Samples.size()));
+  const std::vector<Index> sids =
+    asmcore::FinitePointIds(simplified.data(), static_cast<Index>(r.Samples.size()));
   FUZZ_CHECK(sids.size() == r.Samples.size());
   const asmcore::Neighbors tree(k.Xyz.data(), ids);
   asmcore::ComparisonOptions options;
@@ -434,9 +435,8 @@ void CheckCurvature(const Case& k, asmcore::IdView ids, const asmcore::SimplifyR
   {
     const std::vector<asmcore::CurvatureEstimate> e = asmcore::EstimateCurvature(
       k.Xyz.data(), ids, tree, positions.data(), count, normals.data(), neighbors, {});
-    const std::vector<asmcore::CurvatureEstimate> again = asmcore::EstimateCurvature(
-      k.Xyz.data(), ids, tree, positions.data(), count, normals.data(), neighbors,
-      ReversedSingleSteps());
+    const std::vector<asmcore::CurvatureEstimate> again = asmcore::EstimateCurvature(k.Xyz.data(),
+      ids, tree, positions.data(), count, normals.data(), neighbors, ReversedSingleSteps());
     FUZZ_CHECK(static_cast<Index>(e.size()) == count && again.size() == e.size());
     const int expected = static_cast<int>(std::min<std::size_t>(neighbors, ids.size()));
     for (std::size_t i = 0; i < e.size(); ++i)

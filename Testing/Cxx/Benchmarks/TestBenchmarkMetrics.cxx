@@ -163,8 +163,9 @@ TEST(BenchmarkData, SyntheticShapesAreSeededAndOnTheirSurface)
 TEST(BenchmarkMethods, SearchScaleFindsTheCount)
 {
   vtkIdType found = 0;
-  const double s = asmbench::SearchScale(
-    [](double v) { return static_cast<vtkIdType>(1e6 / (v * v)); }, 1000, 1.0, 2.0, 0.01, 40, found);
+  const double s =
+    asmbench::SearchScale([](double v) { return static_cast<vtkIdType>(1e6 / (v * v)); }, 1000, 1.0,
+      2.0, 0.01, 40, found);
   EXPECT_NEAR(static_cast<double>(found), 1000.0, 10.0);
   EXPECT_NEAR(s, std::sqrt(1000.0), 0.5);
 }
@@ -198,7 +199,8 @@ TEST(BenchmarkMethods, VoxelDivisionsStayWithinTheBinBound)
   const double flat[6] = { 0.0, 100.0, 0.0, 50.0, 0.0, 0.0 };
   for (const double* bounds : { cube, flat })
   {
-    for (double s : std::vector<double>{ 1.0, 1e-2, 1e-3, 1e-5, 1e-9, 0.0, -1.0, std::nan(""), HUGE_VAL })
+    for (double s :
+      std::vector<double>{ 1.0, 1e-2, 1e-3, 1e-5, 1e-9, 0.0, -1.0, std::nan(""), HUGE_VAL })
     {
       const std::array<int, 3> d = asmbench::VoxelDivisions(bounds, s);
       EXPECT_TRUE(asmbench::DivisionsFit(d)) << "s = " << s;

@@ -16,7 +16,8 @@ TEST(BenchmarkSettings, PropertiesAreSetByName)
 {
   vtkNew<vtkASMSimplify> filter;
   std::string error;
-  ASSERT_TRUE(ApplyAsmSettings(filter, "FillHoles=0,FinalLloydIterations=1,KeyPointRadius=0.5,Mode=paper", error))
+  ASSERT_TRUE(ApplyAsmSettings(
+    filter, "FillHoles=0,FinalLloydIterations=1,KeyPointRadius=0.5,Mode=paper", error))
     << error;
   EXPECT_EQ(filter->GetFillHoles(), 0);
   EXPECT_EQ(filter->GetFinalLloydIterations(), 1);
@@ -56,7 +57,8 @@ TEST(BenchmarkSettings, VariantsAreParsed)
 {
   AsmConfig config;
   std::string error;
-  ASSERT_TRUE(ParseAsmVariant("ASM fast:FillHoles=0,FinalLloydIterations=0", config, error)) << error;
+  ASSERT_TRUE(ParseAsmVariant("ASM fast:FillHoles=0,FinalLloydIterations=0", config, error))
+    << error;
   EXPECT_EQ(config.Name, "ASM fast");
   EXPECT_EQ(config.Settings, "FillHoles=0,FinalLloydIterations=0");
   EXPECT_EQ(config.Mode, AsmMode::FeaturePreserving);
@@ -64,8 +66,8 @@ TEST(BenchmarkSettings, VariantsAreParsed)
   EXPECT_TRUE(config.Variant);
   ASSERT_TRUE(ParseAsmVariant("literal:Mode=paper,Alpha=0.25", config, error)) << error;
   EXPECT_EQ(config.Mode, AsmMode::Paper);
-  EXPECT_FALSE(ParseAsmVariant("FillHoles=0", config, error));          // no name
-  EXPECT_FALSE(ParseAsmVariant(":FillHoles=0", config, error));         // empty name
+  EXPECT_FALSE(ParseAsmVariant("FillHoles=0", config, error));             // no name
+  EXPECT_FALSE(ParseAsmVariant(":FillHoles=0", config, error));            // empty name
   EXPECT_FALSE(ParseAsmVariant("ASM default:FillHoles=0", config, error)); // a standard name
   EXPECT_FALSE(ParseAsmVariant("x:FillHoles=maybe", config, error));
   // The programs' --asm: appended once per name.
