@@ -16,6 +16,8 @@ PKGS=(
   libopenmpi-dev python3-mpi4py libxt-dev
   # libFuzzer target (scripts/fuzz.sh): clang with its sanitizer/fuzzer runtimes
   clang-14 libclang-rt-14-dev
+  # the format check (scripts/check-format.sh, CTest format.ClangFormat)
+  clang-format-14
   # headless runs of pvpython / pvbatch / paraview
   xvfb xauth libgl1-mesa-dri   # Xvfb + Mesa llvmpipe (software OpenGL) for the gui tests
   # header-only CGAL: the CGAL peers of the quality benchmark (Benchmarks/)
