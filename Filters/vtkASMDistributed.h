@@ -377,12 +377,21 @@ void CombineFigures(
 /// (cloud.SourceRank, cloud.SourceId): each process asks the processes that
 /// hold its samples' representatives, which read them from their input's
 /// point data `inputPD` and send them back (an exact encoding: strings as
-/// bytes, variants with their type, bits as bytes). The arrays are added to
-/// `outPD`, which then holds its arrays in the input's order
-/// (cloud.ArrayOrder), as on the serial path. Returns false (and adds
-/// nothing) when a reply could not be read.
+/// bytes, variants with their type, bits as bytes). `ties` (sample, point),
+/// from ChooseAmongDuplicates: exact duplicates of a sample's
+/// representative with the same values in every array that travelled;
+/// their fetched values are asked for too, and the one whose values come
+/// first (array by array in the input's order, CompareTuples; then the
+/// representative) becomes the representative, as a serial run chooses.
+/// The arrays go into `fetchedPD` (AddFetchedArrays puts them in the
+/// output). Returns false (and adds nothing) when a reply could not be read.
 bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
-  const LocalCloud& cloud, const asmcore::SimplifyResult& result, vtkPointData* outPD);
+  const LocalCloud& cloud, const std::vector<std::pair<vtkIdType, asmcore::Index>>& ties,
+  asmcore::SimplifyResult& result, vtkPointData* fetchedPD);
+
+/// Adds the arrays of `fetchedPD` to `outPD`, which then holds its arrays in
+/// the input's order (cloud.ArrayOrder), as on the serial path.
+void AddFetchedArrays(vtkPointData* fetchedPD, const LocalCloud& cloud, vtkPointData* outPD);
 
 /// Drops from `ids` the points flagged as duplicates of another process's
 /// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which

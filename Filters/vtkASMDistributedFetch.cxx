@@ -3,6 +3,7 @@
 // points, read for the samples at their representatives after the run
 // (FetchRepresentativeValues, vtkASMDistributed.h).
 #include "vtkASMDistributed.h"
+#include "vtkASMPointDataAggregation.h"
 
 #include "vtkAbstractArray.h"
 #include "vtkBitArray.h"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <string>
 
 namespace asmvtk
@@ -281,7 +283,8 @@ void PlaceInOrder(vtkPointData* pd, const std::vector<std::string>& order)
 } // namespace
 
 bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
-  const LocalCloud& cloud, const asmcore::SimplifyResult& result, vtkPointData* outPD)
+  const LocalCloud& cloud, const std::vector<std::pair<vtkIdType, Index>>& ties,
+  asmcore::SimplifyResult& result, vtkPointData* fetchedPD)
 {
   const std::vector<FetchedArray>& fetched = cloud.Fetched;
   if (fetched.empty()) // (the same on every process: agreed in Redistribute)
@@ -290,21 +293,33 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   }
   const int processes = comm.Size();
   const auto count = static_cast<vtkIdType>(result.Samples.size());
-  // 1. Requests: the representatives' ids, to the processes holding them,
-  // in sample order (samplesFrom[r]: the samples whose values r sends).
-  std::vector<std::vector<vtkIdType>> samplesFrom(static_cast<std::size_t>(processes));
+  // The rows asked for: one per sample (its representative), in sample
+  // order, then one per tie (another candidate for that sample).
+  std::vector<Index> rowPoint(static_cast<std::size_t>(count) + ties.size());
   for (vtkIdType s = 0; s < count; ++s)
   {
-    samplesFrom[cloud.SourceRank[result.Samples[s].Representative]].push_back(s);
+    rowPoint[s] = result.Samples[s].Representative;
+  }
+  for (std::size_t t = 0; t < ties.size(); ++t)
+  {
+    rowPoint[count + t] = ties[t].second;
+  }
+  const auto rows = static_cast<vtkIdType>(rowPoint.size());
+  // 1. Requests: the rows' point ids, to the processes holding them
+  // (rowsFrom[r]: the rows whose values r sends, in increasing order).
+  std::vector<std::vector<vtkIdType>> rowsFrom(static_cast<std::size_t>(processes));
+  for (vtkIdType row = 0; row < rows; ++row)
+  {
+    rowsFrom[cloud.SourceRank[rowPoint[row]]].push_back(row);
   }
   std::vector<asmcore::PointArray<long long>> send(static_cast<std::size_t>(processes));
   std::vector<long long> asked;
   for (int r = 0; r < processes; ++r)
   {
     asked.clear();
-    for (vtkIdType s : samplesFrom[r])
+    for (vtkIdType row : rowsFrom[r])
     {
-      asked.push_back(cloud.SourceId[result.Samples[s].Representative]);
+      asked.push_back(cloud.SourceId[rowPoint[row]]);
     }
     AppendMessage(send[r], asked.data(), asked.size() * sizeof(long long));
   }
@@ -323,11 +338,11 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   Writer writer;
   for (int r = 0; r < processes; ++r)
   {
-    const std::size_t rows = readable ? messages[r].second / sizeof(long long) : 0;
+    const std::size_t asks = readable ? messages[r].second / sizeof(long long) : 0;
     writer.Bytes.clear();
-    for (std::size_t a = 0; rows > 0 && a < fetched.size(); ++a)
+    for (std::size_t a = 0; asks > 0 && a < fetched.size(); ++a)
     {
-      for (std::size_t j = 0; j < rows; ++j)
+      for (std::size_t j = 0; j < asks; ++j)
       {
         long long id;
         std::memcpy(&id, messages[r].first + j * sizeof(long long), sizeof(id));
@@ -351,27 +366,26 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   const asmcore::PointArray<long long> replies = comm.Exchange(send);
   readable = SplitMessages(replies, processes, messages) && readable;
 
-  // 3. The output arrays: the samples of samplesFrom[r] take the values of
-  // r's reply, in order.
-  std::vector<vtkSmartPointer<vtkAbstractArray>> arrays;
+  // 3. The rows' values: rowsFrom[r] take those of r's reply, in order.
+  std::vector<vtkSmartPointer<vtkAbstractArray>> values;
   for (const FetchedArray& f : fetched)
   {
     auto array = vtk::TakeSmartPointer(vtkAbstractArray::CreateArray(f.Type));
     array->SetName(f.Name.c_str());
     array->SetNumberOfComponents(f.Components);
-    array->SetNumberOfTuples(count);
-    arrays.push_back(array);
+    array->SetNumberOfTuples(rows);
+    values.push_back(array);
   }
   for (int r = 0; readable && r < processes; ++r)
   {
     Reader reader(messages[r].first, messages[r].second);
     for (std::size_t a = 0; a < fetched.size(); ++a)
     {
-      for (vtkIdType s : samplesFrom[r])
+      for (vtkIdType row : rowsFrom[r])
       {
         for (int c = 0; c < fetched[a].Components; ++c)
         {
-          Decode(reader, arrays[a], s, c);
+          Decode(reader, values[a], row, c);
         }
       }
     }
@@ -381,11 +395,61 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
   {
     return false;
   }
-  for (const auto& array : arrays)
+
+  // 4. Among a sample's ties, the row whose values come first (ties: the
+  // representative's row, then the lower row) gives the sample its
+  // representative and its values.
+  auto before = [&values](vtkIdType a, vtkIdType b) {
+    for (const auto& array : values)
+    {
+      if (const int order = CompareTuples(array, a, b))
+      {
+        return order < 0;
+      }
+    }
+    return false;
+  };
+  std::vector<vtkIdType> chosen(static_cast<std::size_t>(count));
+  std::iota(chosen.begin(), chosen.end(), vtkIdType(0));
+  for (std::size_t t = 0; t < ties.size(); ++t)
   {
-    outPD->AddArray(array);
+    const vtkIdType s = ties[t].first;
+    const vtkIdType row = count + static_cast<vtkIdType>(t);
+    if (before(row, chosen[s]))
+    {
+      chosen[s] = row;
+      result.Samples[s].Representative = rowPoint[row];
+    }
+  }
+  for (auto& array : values)
+  {
+    if (!ties.empty())
+    {
+      auto samples = vtk::TakeSmartPointer(array->NewInstance());
+      samples->SetName(array->GetName());
+      samples->SetNumberOfComponents(array->GetNumberOfComponents());
+      samples->SetNumberOfTuples(count);
+      for (vtkIdType s = 0; s < count; ++s)
+      {
+        samples->SetTuple(s, chosen[s], array);
+      }
+      array = samples;
+    }
+    fetchedPD->AddArray(array);
+  }
+  return true;
+}
+
+void AddFetchedArrays(vtkPointData* fetchedPD, const LocalCloud& cloud, vtkPointData* outPD)
+{
+  if (cloud.Fetched.empty())
+  {
+    return; // (the output's arrays are in the input's order already)
+  }
+  for (int i = 0; i < fetchedPD->GetNumberOfArrays(); ++i)
+  {
+    outPD->AddArray(fetchedPD->GetAbstractArray(i));
   }
   PlaceInOrder(outPD, cloud.ArrayOrder);
-  return true;
 }
 } // namespace asmvtk

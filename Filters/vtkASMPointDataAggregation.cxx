@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -218,9 +219,15 @@ int CompareValues(T a, T b)
   return a < b ? -1 : (b < a ? 1 : 0);
 }
 
-// -1, 0 or 1: the tuple of point a against that of point b in `array`,
-// component by component, by value (strings by their bytes; other arrays,
-// such as variant arrays, tie).
+bool IsAOS(vtkAbstractArray* a)
+{
+  return a->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
+    a->GetDataType() != VTK_BIT && vtkDataArray::SafeDownCast(a) != nullptr;
+}
+} // namespace
+
+namespace asmvtk
+{
 int CompareTuples(vtkAbstractArray* array, vtkIdType a, vtkIdType b)
 {
   const int nc = array->GetNumberOfComponents();
@@ -266,15 +273,6 @@ int CompareTuples(vtkAbstractArray* array, vtkIdType a, vtkIdType b)
   return 0;
 }
 
-bool IsAOS(vtkAbstractArray* a)
-{
-  return a->GetArrayType() == vtkAbstractArray::AoSDataArrayTemplate &&
-    a->GetDataType() != VTK_BIT && vtkDataArray::SafeDownCast(a) != nullptr;
-}
-} // namespace
-
-namespace asmvtk
-{
 int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyResult& result,
   bool snap, Index numberOfPoints, vtkObject* reporter, bool threads)
 {
@@ -341,11 +339,13 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
   return dropped;
 }
 
-void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap, bool threads)
+void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap, bool threads,
+  std::vector<std::pair<vtkIdType, Index>>* ties)
 {
   const auto& duplicates = result.RepresentativeDuplicates;
   // The arrays, all compared; something to do only when one of them is
-  // taken from the representatives (with snapping: all of them).
+  // taken from the representatives (with snapping: all of them), or when
+  // the ties are asked for.
   std::vector<vtkAbstractArray*> arrays;
   bool copied = false;
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
@@ -356,36 +356,68 @@ void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap
       arrays.push_back(array);
     }
   }
-  if (duplicates.empty() || !copied)
+  if (ties)
+  {
+    ties->clear();
+  }
+  if (duplicates.empty() || (!copied && !ties))
   {
     return;
   }
-  auto before = [&arrays](Index a, Index b) {
+  auto compare = [&arrays](Index a, Index b) {
     for (vtkAbstractArray* array : arrays)
     {
       if (const int order = CompareTuples(array, a, b))
       {
-        return order < 0;
+        return order;
       }
     }
-    return a < b;
+    return 0;
   };
+  std::mutex tiesMutex;
   asmvtk::For(
     threads, 0, static_cast<vtkIdType>(result.Samples.size()), [&](vtkIdType begin, vtkIdType end) {
+      std::vector<std::pair<vtkIdType, Index>> found;
       for (vtkIdType s = begin; s < end; ++s)
       {
         asmcore::Sample& sample = result.Samples[s];
         const Index r = sample.Representative;
-        auto first = std::lower_bound(duplicates.begin(), duplicates.end(),
+        const auto first = std::lower_bound(duplicates.begin(), duplicates.end(),
           std::make_pair(r, std::numeric_limits<Index>::min()));
-        for (; first != duplicates.end() && first->first == r; ++first)
+        auto last = first;
+        for (; last != duplicates.end() && last->first == r; ++last)
         {
-          if (before(first->second, sample.Representative))
+          const int order = compare(last->second, sample.Representative);
+          if (order < 0 || (order == 0 && last->second < sample.Representative))
           {
-            sample.Representative = first->second;
+            sample.Representative = last->second;
+          }
+        }
+        if (ties)
+        {
+          // The points at its position with the same values as the one chosen.
+          auto tied = [&](Index p) {
+            if (p != sample.Representative && compare(p, sample.Representative) == 0)
+            {
+              found.emplace_back(s, p);
+            }
+          };
+          tied(r);
+          for (auto it = first; it != last; ++it)
+          {
+            tied(it->second);
           }
         }
       }
+      if (!found.empty())
+      {
+        const std::lock_guard<std::mutex> lock(tiesMutex);
+        ties->insert(ties->end(), found.begin(), found.end());
+      }
     });
+  if (ties)
+  {
+    std::sort(ties->begin(), ties->end());
+  }
 }
 } // namespace asmvtk

@@ -32,6 +32,12 @@
 
 #include "Core/Simplify.h"
 
+#include "vtkType.h"
+
+#include <utility>
+#include <vector>
+
+class vtkAbstractArray;
 class vtkObject;
 class vtkPointData;
 
@@ -51,14 +57,22 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// input point becomes, among the points at exactly its position
 /// (SimplifyResult::RepresentativeDuplicates), the one whose point data
 /// comes first: array by array in the order of `inPD`, component by
-/// component, by value (NaN after every number; strings by their bytes),
-/// then the lower id. So the tuples copied from representatives (and, with
-/// `snap`, every array) do not depend on the input's order or on the number
-/// of MPI processes. Nothing to do when no representative has a duplicate or
-/// no array is taken from the representatives (`snap` off, floating-point
-/// arrays only).
-void ChooseAmongDuplicates(
-  vtkPointData* inPD, asmcore::SimplifyResult& result, bool snap, bool threads = true);
+/// component, by value (CompareTuples), then the lower id. So the tuples
+/// copied from representatives (and, with `snap`, every array) do not depend
+/// on the input's order or on the number of MPI processes. Nothing to do
+/// when no representative has a duplicate or no array is taken from the
+/// representatives (`snap` off, floating-point arrays only), unless `ties`
+/// is given: it then also receives, as (sample, point) pairs in increasing
+/// order, the other points at each sample's position with the same values
+/// in every array of `inPD` (a distributed run's string arrays, which are
+/// not in `inPD`, decide among them: FetchRepresentativeValues).
+void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::SimplifyResult& result, bool snap,
+  bool threads = true, std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
+
+/// -1, 0 or 1: the tuple of point a against that of point b in `array`,
+/// component by component, by value (NaN after every number and equal to
+/// NaN; strings by their bytes; other arrays, such as variant arrays, tie).
+int CompareTuples(vtkAbstractArray* array, vtkIdType a, vtkIdType b);
 } // namespace asmvtk
 
 #endif

@@ -268,7 +268,20 @@ int vtkASMSimplify::RequestData(
                     << result.CellSize << ".");
   }
   // Which of exact duplicates each sample stands for: by value, not by id.
-  asmvtk::ChooseAmongDuplicates(inPD, result, this->SnapToInputPoints, threads);
+  // (A distributed run's string, variant and bit arrays, read from the
+  // processes holding the points, decide among those that tie on the rest.)
+  std::vector<std::pair<vtkIdType, asmcore::Index>> ties;
+  const bool fetching = distributed && !share.Cloud.Fetched.empty();
+  asmvtk::ChooseAmongDuplicates(
+    inPD, result, this->SnapToInputPoints, threads, fetching ? &ties : nullptr);
+  vtkNew<vtkPointData> fetchedPD;
+  if (distributed &&
+    !asmvtk::FetchRepresentativeValues(
+      comm, input->GetPointData(), share.Cloud, ties, result, fetchedPD))
+  {
+    vtkWarningMacro(<< "The string, variant and bit arrays could not be read from the other "
+                       "processes: they are not passed on.");
+  }
   const auto count = static_cast<vtkIdType>(result.Samples.size());
   // From here on the coordinates and ids serve the curvature estimates only:
   // released before the output is laid out when those are off.
@@ -296,11 +309,9 @@ int vtkASMSimplify::RequestData(
   vtkPointData* outPD = output->GetPointData();
   asmvtk::AggregatePointData(
     inPD, outPD, result, this->SnapToInputPoints, numberOfPoints, this, threads);
-  if (distributed &&
-    !asmvtk::FetchRepresentativeValues(comm, input->GetPointData(), share.Cloud, result, outPD))
+  if (distributed)
   {
-    vtkWarningMacro(<< "The string, variant and bit arrays could not be read from the other "
-                       "processes: they are not passed on.");
+    asmvtk::AddFetchedArrays(fetchedPD, share.Cloud, outPD);
   }
   asmcore::PointArray<asmcore::Index>().swap(
     result.Members); // used up: room for the curvature's tree

@@ -5,7 +5,8 @@
 // read at the samples' representatives after the run and give what the
 // serial path gives, in the input's order of arrays; an array with fewer
 // tuples than points is dropped with a warning on both paths (never read
-// past its end).
+// past its end); among exact duplicates with the same numbers, the strings
+// decide on both paths.
 #include "FilterHelpers.h"
 
 #include "vtkBitArray.h"
@@ -220,5 +221,66 @@ TEST(DistributedArrays, ArraysShorterThanThePointsAreDroppedOnBothPaths)
       EXPECT_EQ(out->GetPointData()->GetAbstractArray("Short names"), nullptr) << what;
       EXPECT_GE(warnings, 1) << what << ": the user is told";
     }
+  }
+}
+
+TEST(DistributedArrays, AmongDuplicatesTheStringsDecideOnBothPaths)
+{
+  // Every point twice (ids i and i + n, as merged overlapping scans give),
+  // with the same numbers on both copies and different strings: "z..." on
+  // the first copy, "a..." on the second. A serial run stands for the copy
+  // whose values come first, "a...": so must a distributed run, whose
+  // strings do not travel with the points.
+  const vtkSmartPointer<vtkPolyData> sphere = asmtest::ToPolyData(asmtest::Sphere(3000, 1.0, 9));
+  const vtkIdType n = sphere->GetNumberOfPoints();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkStringArray> names;
+  names->SetName("Point name");
+  vtkNew<vtkIntArray> label;
+  label->SetName("Label");
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      points->InsertNextPoint(sphere->GetPoint(i));
+      names->InsertNextValue((copy == 0 ? "z" : "a") + std::to_string(i));
+      label->InsertNextValue(static_cast<int>(i % 5));
+      intensity->InsertNextValue(static_cast<float>(i % 7));
+    }
+  }
+  vtkNew<vtkPolyData> input;
+  input->SetPoints(points);
+  input->GetPointData()->AddArray(label);
+  input->GetPointData()->AddArray(names);
+  input->GetPointData()->AddArray(intensity);
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    std::vector<std::pair<vtkIdType, std::string>> rows[2]; // (representative, name)
+    for (bool distributed : { false, true })
+    {
+      const std::string what =
+        "mode " + std::to_string(mode) + (distributed ? ", distributed" : "");
+      int warnings = 0;
+      vtkSmartPointer<vtkPolyData> out = SimplifyTo300(input, mode, distributed, warnings);
+      EXPECT_EQ(warnings, 0) << what;
+      vtkPointData* pd = out->GetPointData();
+      auto* ids = vtkIdTypeArray::SafeDownCast(pd->GetArray("vtkOriginalPointIds"));
+      auto* outNames = vtkStringArray::SafeDownCast(pd->GetAbstractArray("Point name"));
+      ASSERT_TRUE(ids && outNames) << what;
+      ASSERT_EQ(outNames->GetNumberOfValues(), 300) << what;
+      int first = 0;
+      for (vtkIdType s = 0; s < 300; ++s)
+      {
+        const vtkIdType id = ids->GetValue(s);
+        first += outNames->GetValue(s)[0] == 'a' ? 1 : 0;
+        EXPECT_EQ(outNames->GetValue(s), names->GetValue(id)) << what << ", sample " << s;
+        rows[distributed].emplace_back(id, outNames->GetValue(s));
+      }
+      EXPECT_EQ(first, 300) << what << ": every sample stands for the copy named a...";
+      std::sort(rows[distributed].begin(), rows[distributed].end());
+    }
+    EXPECT_EQ(rows[1], rows[0]) << "mode " << mode << ": the distributed run gives the serial one";
   }
 }

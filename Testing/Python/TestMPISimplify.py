@@ -19,10 +19,12 @@ all processes, and BoundSnappedHoles, which it takes over all processes).
 "lattice-paper" and "lattice-feature": the same two modes (N_s = 2000) on
 gridded data instead of the bunny, whose points tie exactly everywhere: a
 150 x 150 lattice over [-3, 3]^2 with a stepped height z = 0.1 floor(x + y),
-every point twice, the copies with different labels (an integer array,
-"Label", taken from each sample's representative: 5, the copy whose values
-come first), the representatives' indices compared too ("Source", from a
-string array); each cell is processed in its canonical order
+every point twice, the copies of every other point with different labels
+(an integer array, "Label", taken from each sample's representative: 5,
+the copy whose values come first), the others with the same label and
+different strings (which then decide: a distributed run reads them from
+the processes holding the copies), the representatives' indices compared
+too ("Source", from that string array); each cell is processed in its canonical order
 (asmcore::CanonicalOrder), so the serial path, which reads the points in
 input order, and the distributed runs, which receive them in another, agree.
 Optional third argument "serial": pvbatch started without mpiexec (one
@@ -82,11 +84,13 @@ value = numpy_to_vtk(np.ascontiguousarray(xyz[mine, 0] * 10.0 + xyz[mine, 1]), d
 value.SetName("Value")
 piece.GetPointData().AddArray(value)
 if LATTICE:
-    # The lattice's two copies of a point carry different labels (an integer
-    # array: a sample takes its representative's): the copy whose label
-    # comes first, 5 (by value, not by id or by the values' bytes), in every
-    # run, whatever the order the copies come in.
-    labels = np.where(np.arange(len(xyz)) < len(grid), 256, 5).astype(np.int32)
+    # The lattice's two copies of every odd point carry different labels (an
+    # integer array: a sample takes its representative's): the copy whose
+    # label comes first, 5 (by value, not by id or by the values' bytes), in
+    # every run, whatever the order the copies come in. The copies of an even
+    # point both have 5: their strings decide.
+    copy_index = np.arange(len(xyz))
+    labels = np.where((copy_index < len(grid)) & (copy_index % 2 == 1), 256, 5).astype(np.int32)
     label = numpy_to_vtk(np.ascontiguousarray(labels[mine]), deep=1)
     label.SetName("Label")
     piece.GetPointData().AddArray(label)
@@ -94,7 +98,8 @@ if LATTICE:
 # it at the samples' representatives after the run): each point's index in
 # xyz, which every sample must carry for its representative (and, on the
 # lattice, the copy whose label comes first: the string comes after the
-# label, so the label decides, on the serial path too).
+# label, so the label decides, on the serial path too; where the labels tie,
+# the copy whose string comes first, in every run).
 # A variant and a bit array travel the same way.
 names = vtkStringArray()
 names.SetName("Point name")
