@@ -6,15 +6,20 @@
 #ifndef asm_profile_Profile_h
 #define asm_profile_Profile_h
 
+#include "Core/Common.h"
+#include "vtkASMFilterUtilities.h"
+
+#include "vtkPolyData.h"
+
 #include <time.h>
 
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <vector>
 
 class vtkASMSimplify;
-class vtkPolyData;
 
 namespace asmprofile
 {
@@ -38,6 +43,21 @@ inline double Median(std::vector<double> v)
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+/// An input's coordinates and finite ids as vtkASMSimplify reads them
+/// (asmvtk::PrepareCoordinates, with its two switches).
+struct InputCoordinates
+{
+  std::unique_ptr<double[]> Copy;
+  asmcore::PointIds IdList;
+  asmcore::IdView Ids;
+  asmcore::Coordinates Xyz;
+  explicit InputCoordinates(vtkPolyData* input, bool threads = true, bool floatsInPlace = false)
+  {
+    this->Xyz = asmvtk::PrepareCoordinates(
+      input->GetPoints(), this->Copy, this->IdList, this->Ids, threads, floatsInPlace);
+  }
+};
 
 /// The core's stages one by one, one thread (mirrors asmcore::Simplify),
 /// then the curvature's parts (--stages).

@@ -70,10 +70,9 @@ void TimeLoops(vtkPolyData* input, double fraction, int mode, int runs,
   const std::vector<long>& threadCounts, const std::function<bool(vtkASMSimplify*)>& settings)
 {
   using namespace asmcore;
-  std::unique_ptr<double[]> copy;
-  PointIds idList;
-  IdView ids;
-  const Coordinates xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids);
+  const InputCoordinates cloud(input);
+  const Coordinates xyz = cloud.Xyz;
+  const IdView ids = cloud.Ids;
   vtkNew<vtkASMSimplify> filter;
   if (mode >= 0)
     filter->SetMode(mode);

@@ -33,11 +33,9 @@ void TimeCurvature(
   vtkPolyData* input, const std::vector<double>& positions, const std::vector<double>& normals)
 {
   using namespace asmcore;
-  std::unique_ptr<double[]> copy;
-  asmcore::PointIds idList;
-  asmcore::IdView ids;
-  const Coordinates xyz =
-    asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids, false, true);
+  const InputCoordinates cloud(input, false, true);
+  const Coordinates xyz = cloud.Xyz;
+  const IdView ids = cloud.Ids;
   const Index nq = static_cast<Index>(positions.size() / 3);
   double build = 1e9, knn = 1e9, all = 1e9;
   Neighbors tree;
@@ -110,10 +108,9 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
 {
   using namespace asmcore;
   double t0 = Cpu();
-  std::unique_ptr<double[]> copy;
-  asmcore::PointIds idList;
-  asmcore::IdView ids;
-  const double* xyz = asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids).Doubles;
+  const InputCoordinates cloud(input);
+  const double* xyz = cloud.Xyz.Doubles;
+  const IdView ids = cloud.Ids;
   double t1 = Cpu();
   double t2 = Cpu();
   const Index target = static_cast<Index>(std::llround(fraction * ids.size()));
@@ -210,11 +207,9 @@ void TimeStages(vtkPolyData* input, double fraction, int mode)
 void TimeFloor(vtkPolyData* input, double fraction)
 {
   using namespace asmcore;
-  std::unique_ptr<double[]> copy;
-  asmcore::PointIds idList;
-  asmcore::IdView ids;
-  const Coordinates xyz =
-    asmvtk::PrepareCoordinates(input->GetPoints(), copy, idList, ids, true, true);
+  const InputCoordinates cloud(input, true, true);
+  const Coordinates xyz = cloud.Xyz;
+  const IdView ids = cloud.Ids;
   const auto n = static_cast<double>(ids.size());
   const double cellSize = AutomaticCellSize(xyz, ids, ComputeBounds(xyz, ids), fraction * n / 8.0);
   double best[5] = { 1e9, 1e9, 1e9, 1e9, 1e9 };
