@@ -38,7 +38,9 @@
  *    the MPI lattice modes, DistributedFeatureHooks.*Lattice*). Among exact
  *    duplicates (the same position), the point a sample stands for is the
  *    one whose values come first (asmvtk::ChooseAmongDuplicates, after the
- *    core, on either path). (Key Point Error chooses among equidistant
+ *    core, on either path; here the string, variant and bit arrays, read
+ *    after the run, decide among the copies that tie on the rest:
+ *    FetchRepresentativeValues). (Key Point Error chooses among equidistant
  *    nearest samples by position too.) A one-process run started by mpiexec
  *    takes this path too (LaunchedByMPIRunner: ParaView built with MPI has
  *    a one-process MPI controller even in the built-in session, so the
@@ -117,14 +119,12 @@
  * Numeric point-data arrays travel with the points, in their records;
  * string, variant and bit arrays are read after the run at the samples'
  * representatives (FetchRepresentativeValues: the value a serial run gives
- * them). An array that some process with points lacks (or has with another
- * type, fewer components or fewer tuples than points) is dropped with a
- * warning, as are unnamed arrays. Points flagged as duplicate ghosts
- * (vtkGhostType) are skipped.
- * The core runs unchanged on each process's points through hooks in
- * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
- * halo cells are passed to it too (Paper: budget -1, neighbours only;
- * feature mode: true budgets, not output).
+ * them, exact duplicates included). An array that some process with points lacks (or has with
+ * another type, fewer components or fewer tuples than points) is dropped with a warning, as are
+ * unnamed arrays. Points flagged as duplicate ghosts (vtkGhostType) are skipped. The core runs
+ * unchanged on each process's points through hooks in asmcore::SimplifyParameters (Grid,
+ * CellBudget, CloudCentroid, OutputCell); halo cells are passed to it too (Paper: budget -1,
+ * neighbours only; feature mode: true budgets, not output).
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h
