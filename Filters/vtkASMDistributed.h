@@ -119,12 +119,14 @@
  * Numeric point-data arrays travel with the points, in their records;
  * string, variant and bit arrays are read after the run at the samples'
  * representatives (FetchRepresentativeValues: the value a serial run gives
- * them, exact duplicates included). An array that some process with points lacks (or has with
- * another type, fewer components or fewer tuples than points) is dropped with a warning, as are
- * unnamed arrays. Points flagged as duplicate ghosts (vtkGhostType) are skipped. The core runs
- * unchanged on each process's points through hooks in asmcore::SimplifyParameters (Grid,
- * CellBudget, CloudCentroid, OutputCell); halo cells are passed to it too (Paper: budget -1,
- * neighbours only; feature mode: true budgets, not output).
+ * them, exact duplicates included). An array that some process with points
+ * lacks (or has with another type, fewer components or fewer tuples than
+ * points) is dropped with a warning, as are unnamed arrays. Points flagged
+ * as duplicate ghosts (vtkGhostType) are skipped.
+ * The core runs unchanged on each process's points through hooks in
+ * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
+ * halo cells are passed to it too (Paper: budget -1, neighbours only;
+ * feature mode: true budgets, not output).
  */
 #ifndef vtkASMDistributed_h
 #define vtkASMDistributed_h
