@@ -95,9 +95,47 @@ Method MakeCgalHierarchy(vtkPolyData* input, vtkIdType target)
   const double slack = std::max(0.5, 0.01 * static_cast<double>(target));
   // The count falls as the cluster size grows: the smallest size whose
   // count is <= target (bisection), then a smaller maximum variation (more
-  // splits) to come up to target.
-  unsigned int lo = 1, hi = static_cast<unsigned int>(std::max<vtkIdType>(2, points->size()));
-  vtkIdType hiCount = run(hi, 1.0 / 3.0, false).Count;
+  // splits) to come up to target. The bisection starts from a bracket
+  // around N / N_s, found by doubling or halving (a few runs on a large
+  // cloud, where [1, N] would take log2 N).
+  const unsigned int n = static_cast<unsigned int>(std::max<vtkIdType>(2, points->size()));
+  unsigned int lo = 1, hi = n;
+  vtkIdType hiCount = 0;
+  const unsigned int guess = static_cast<unsigned int>(std::min<double>(n,
+    std::max(2.0, static_cast<double>(n) / static_cast<double>(std::max<vtkIdType>(1, target)))));
+  const vtkIdType guessCount = run(guess, 1.0 / 3.0, false).Count;
+  if (guessCount > target)
+  {
+    lo = guess; // count(lo) > target
+    hiCount = guessCount;
+    for (unsigned int s = guess; hiCount > target;)
+    {
+      lo = s;
+      s = s >= n / 2 ? n : 2 * s;
+      hi = s;
+      hiCount = run(hi, 1.0 / 3.0, false).Count;
+      if (s == n)
+      {
+        break;
+      }
+    }
+  }
+  else
+  {
+    hi = guess;
+    hiCount = guessCount;
+    for (unsigned int s = guess / 2; s > 1; s /= 2)
+    {
+      const vtkIdType c = run(s, 1.0 / 3.0, false).Count;
+      if (c > target)
+      {
+        lo = s;
+        break;
+      }
+      hi = s;
+      hiCount = c;
+    }
+  }
   while (hi - lo > 1)
   {
     const unsigned int mid = lo + (hi - lo) / 2;

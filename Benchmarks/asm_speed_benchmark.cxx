@@ -9,11 +9,18 @@
  *   asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]
  *                       [--fractions 0.05,0.01,0.2] [--inputs spec,...]
  *                       [--no-memory] [--markdown] [--asm NAME:SETTINGS ...]
- *                       [more inputs ...]
+ *                       [--cgal] [more inputs ...]
  *
  * --asm adds a row for vtkASMSimplify with more properties set (the default
  * mode unless Mode=paper; ApplyAsmSettings), e.g. --asm "ASM fast:FillHoles=0";
  * the targets block checks "ASM default" and "ASM paper" only.
+ *
+ * --cgal also times CGAL's grid_simplify_point_set and
+ * hierarchy_simplify_point_set (when built with Debian's libcgal-dev; each
+ * driven within 1 % of N_s, the search not timed), the simplifiers issue 8
+ * names as the usual choices, with the ratio of each ASM row to them. They
+ * run on one thread and simplify in place: each run works on a copy of the
+ * points made before its clock starts, and their memory counts that copy.
  *
  * --readme: the README's run, sized for ~15 minutes on 2 idle cores: bunny,
  * bunny-scans (../shared/data), bumps at 100k, 1M, 4M, 14M; N_s = 5 % (and 1 %,
@@ -61,7 +68,8 @@ void Usage()
        "100k..14M,\n"
        "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
        "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
-       "       (the default mode with those properties; Mode=paper for the paper mode)\n";
+       "       (the default mode with those properties; Mode=paper for the paper mode)\n"
+       "--cgal: also CGAL's grid and hierarchy simplification (built with libcgal-dev)\n";
 }
 
 /// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
@@ -333,7 +341,7 @@ int main(int argc, char* argv[])
   std::vector<double> fractions = { 0.05, 0.01, 0.2 };
   std::vector<int> threads = { 1, 2 };
   int runs = 5;
-  bool markdown = false, memory = true, readme = false;
+  bool markdown = false, memory = true, readme = false, cgal = false;
   std::vector<std::string> extra;
   std::vector<AsmConfig> configs = AsmConfigurations(); // and the variants (--asm)
   for (int i = 1; i < argc; ++i)
@@ -358,6 +366,15 @@ int main(int argc, char* argv[])
     else if (arg == "--markdown")
     {
       markdown = true;
+    }
+    else if (arg == "--cgal")
+    {
+      cgal = true;
+      if (!HaveCGAL())
+      {
+        std::cerr << "--cgal: this build has no CGAL (install libcgal-dev and reconfigure)\n";
+        return 2;
+      }
     }
     else if (arg == "--no-memory")
     {
@@ -446,8 +463,21 @@ int main(int argc, char* argv[])
                " faster); x thr: time with the first thread count / this row's; mem: peak memory"
                " beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
 
-  const std::vector<std::string> columns = { "input", "N", "N_s", "method", "threads", "median s",
-    "Mpt/s", "x vtkVoxelGrid", "x vtkMaskPoints", "x thr", "mem B/pt" };
+  // The peers each ASM row is compared with: (method name, column).
+  std::vector<std::pair<std::string, std::string>> peers = { { "vtkVoxelGrid", "x vtkVoxelGrid" },
+    { "vtkMaskPoints random", "x vtkMaskPoints" } };
+  if (cgal)
+  {
+    peers.insert(
+      peers.end(), { { "CGAL grid", "x CGAL grid" }, { "CGAL hierarchy", "x CGAL hierarchy" } });
+  }
+  std::vector<std::string> columns = { "input", "N", "N_s", "method", "threads", "median s",
+    "Mpt/s" };
+  for (const auto& peer : peers)
+  {
+    columns.push_back(peer.second);
+  }
+  columns.insert(columns.end(), { "x thr", "mem B/pt" });
   // Summary data: seconds per input point, by ASM configuration, fraction, input, threads.
   std::map<std::string, std::map<std::string, std::map<int, double>>>
     perPoint; // key: config@fraction
@@ -481,7 +511,14 @@ int main(int argc, char* argv[])
           methods.push_back(m);
         }
       }
-      for (Method m : { MakeVoxelGrid(input.Data, target), MakeMaskPoints(input.Data, target, 1) })
+      std::vector<Method> peerMethods = { MakeVoxelGrid(input.Data, target),
+        MakeMaskPoints(input.Data, target, 1) };
+      if (cgal)
+      {
+        peerMethods.push_back(MakeCgalGrid(input.Data, target));
+        peerMethods.push_back(MakeCgalHierarchy(input.Data, target));
+      }
+      for (const Method& m : peerMethods)
       {
         if (m.Run) // the search is not timed; an empty Run: the peer cannot run this configuration
         {
@@ -518,7 +555,7 @@ int main(int argc, char* argv[])
             continue;
           }
           const Timing& timing = timings[m.Name];
-          auto ratio = [&](const char* peer) {
+          auto ratio = [&](const std::string& peer) {
             const auto it = timings.find(peer);
             return !m.IsASM         ? std::string()
               : it == timings.end() ? "-"
@@ -533,14 +570,18 @@ int main(int argc, char* argv[])
           // "*": the method could not be driven within 1 % of N_s.
           const bool off = std::abs(static_cast<double>(timing.Count - target)) >
             std::max(0.5, 0.01 * static_cast<double>(target));
-          table.Add({ input.Name, std::to_string(n),
+          std::vector<std::string> row = { input.Name, std::to_string(n),
             std::to_string(timing.Count) + (off ? "*" : ""), m.Name, std::to_string(t),
-            Format(timing.Median, 3), Fixed(static_cast<double>(n) / timing.Median / 1e6, 1),
-            ratio("vtkVoxelGrid"), ratio("vtkMaskPoints random"),
-            t != threads.front() && firstMedian.count(m.Name)
+            Format(timing.Median, 3), Fixed(static_cast<double>(n) / timing.Median / 1e6, 1) };
+          for (const auto& peer : peers)
+          {
+            row.push_back(ratio(peer.first));
+          }
+          row.push_back(t != threads.front() && firstMedian.count(m.Name)
               ? "x" + Fixed(firstMedian[m.Name] / timing.Median, 2)
-              : "",
-            hasMemory ? Fixed(mem->second, 1) : "" });
+              : "");
+          row.push_back(hasMemory ? Fixed(mem->second, 1) : "");
+          table.Add(row);
           records.push_back({ input.Name, n, fraction, m.Name, m.IsASM, t, timing.Median,
             hasMemory ? mem->second : NAN });
           if (m.IsASM)
