@@ -17,16 +17,48 @@ bool IsLocalExtreme(Coordinates xyz, const CellGrid& grid, const CellNeighborTab
   double sum = 0.0;
   Index count = 0;
   const CellRef* ring = neighbors.Of(c);
-  // The neighbours first, the own cell (where the candidate is the extreme
-  // already) last: grid-cut candidates fall quickly.
-  for (int step = 0; step < 27; ++step)
+  // The cells within reach: first the neighbours ahead along d (offset o
+  // with d.o > 0), nearest p first: a candidate that only marks where the
+  // grid cuts the surface has a higher point just across the face it lies
+  // on, and falls there (about 11 points read instead of 52 at 1 M points).
+  // Then the other neighbours, and the own cell (where the candidate is
+  // usually the extreme already) last.
+  int order[27], rest[26];
+  double gaps[26];
+  int ahead = 0, behind = 0;
+  for (int k = 0; k < 27; ++k)
   {
-    const int k = step < 13 ? step : (step < 26 ? step + 1 : 13);
     const Index n = ring[k];
-    if (n < 0 || (k != 13 && SquaredDistanceToCell(grid.Spec, grid.CellKey[n], p) > r2))
+    if (k == 13 || n < 0)
     {
       continue;
     }
+    const double gap2 = SquaredDistanceToCell(grid.Spec, grid.CellKey[n], p);
+    if (gap2 > r2)
+    {
+      continue;
+    }
+    if (d[0] * (k % 3 - 1) + d[1] * (k / 3 % 3 - 1) + d[2] * (k / 9 - 1) > 0.0)
+    {
+      int j = ahead++; // (insertion by gap; ties in k order)
+      for (; j > 0 && gaps[j - 1] > gap2; --j)
+      {
+        order[j] = order[j - 1];
+        gaps[j] = gaps[j - 1];
+      }
+      order[j] = k;
+      gaps[j] = gap2;
+    }
+    else
+    {
+      rest[behind++] = k;
+    }
+  }
+  std::copy(rest, rest + behind, order + ahead);
+  order[ahead + behind] = 13; // (entry 13 is c itself)
+  for (int step = 0; step <= ahead + behind; ++step)
+  {
+    const Index n = ring[order[step]];
     const Index end = grid.CellStart[n + 1];
     for (Index slot = grid.CellStart[n]; slot < end; ++slot)
     {
