@@ -106,18 +106,13 @@ Method MakeCgalHierarchy(vtkPolyData* input, vtkIdType target)
   const vtkIdType guessCount = run(guess, 1.0 / 3.0, false).Count;
   if (guessCount > target)
   {
-    lo = guess; // count(lo) > target
+    lo = hi = guess; // count(lo) > target
     hiCount = guessCount;
-    for (unsigned int s = guess; hiCount > target;)
+    while (hiCount > target && hi < n)
     {
-      lo = s;
-      s = s >= n / 2 ? n : 2 * s;
-      hi = s;
+      lo = hi;
+      hi = hi >= n / 2 ? n : 2 * hi;
       hiCount = run(hi, 1.0 / 3.0, false).Count;
-      if (s == n)
-      {
-        break;
-      }
     }
   }
   else
