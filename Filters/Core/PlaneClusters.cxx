@@ -49,45 +49,125 @@ Eigen::Vector3d Representative(
   return snap ? q[NearestMember(q, first, last, c)] : c;
 }
 
+namespace
+{
+// A middle-band point during the splits: its (u0, u1) and its index in q.
+struct SplitEntry
+{
+  double U[2];
+  Index Id;
+};
+
+// The splits' strict order along one axis: the coordinate, then the index.
+// Evaluated without branches: on a cell's points, in their canonical
+// (hash) order, a branch on it mispredicts half the time.
+inline bool SplitBefore(const SplitEntry& x, const SplitEntry& y, int axis)
+{
+  const double a = x.U[axis], b = y.U[axis];
+  return (a < b) | ((a == b) & (x.Id < y.Id));
+}
+
+// Moves the entries before `pivot` to the front of e[0, n), through `tmp`,
+// and returns their count. Every entry is written to both ends of `tmp` and
+// only the end it belongs to advances, so the loop has no branch to mispredict.
+Index PartitionBefore(SplitEntry* e, Index n, const SplitEntry& pivot, int axis, SplitEntry* tmp)
+{
+  Index front = 0, back = n - 1;
+  for (Index i = 0; i < n; ++i)
+  {
+    const SplitEntry x = e[i];
+    const bool before = SplitBefore(x, pivot, axis);
+    tmp[front] = x;
+    tmp[back] = x;
+    front += before;
+    back -= !before;
+  }
+  std::copy(tmp, tmp + n, e);
+  return front;
+}
+
+// Rearranges e[0, n) so that its first `nth` entries are the nth first in
+// the SplitBefore order (a selection like std::nth_element; the order within
+// each side is this function's own, which the caller does not keep).
+void SelectFirst(SplitEntry* e, Index n, Index nth, int axis, SplitEntry* tmp)
+{
+  auto before = [axis](
+                  const SplitEntry& x, const SplitEntry& y) { return SplitBefore(x, y, axis); };
+  Index lo = 0, hi = n;
+  // Quickselect rounds, each removing at least one entry (a median of three
+  // distinct entries has one on each side); a cell's points come in hash
+  // order, so the expected count is logarithmic, and past this many rounds
+  // the library's introselect finishes the job.
+  for (int round = 0; hi - lo > 16; ++round)
+  {
+    if (round == 64)
+    {
+      std::nth_element(e + lo, e + nth, e + hi, before);
+      return;
+    }
+    const SplitEntry& a = e[lo];
+    const SplitEntry& b = e[lo + (hi - lo) / 2];
+    const SplitEntry& c = e[hi - 1];
+    const SplitEntry pivot = before(a, b) ? (before(b, c) ? b : (before(a, c) ? c : a))
+                                          : (before(a, c) ? a : (before(b, c) ? c : b));
+    const Index middle = lo + PartitionBefore(e + lo, hi - lo, pivot, axis, tmp);
+    if (nth == middle)
+    {
+      return;
+    }
+    (nth < middle ? hi : lo) = middle;
+  }
+  std::sort(e + lo, e + hi, before);
+}
+} // namespace
+
 void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out)
 {
   // The splits work on a copy of the points' (u0, u1) and index, so that
-  // each comparison reads adjacent memory; the clusters are written back
-  // into [first, last) at the end, in the order they are completed.
-  struct Entry
-  {
-    double U[2];
-    Index Id;
-  };
+  // each comparison reads adjacent memory.
   struct Task
   {
     Index Begin;
     Index End;
     Index K;
   };
-  thread_local std::vector<Entry> entries; // reused by the cells a thread processes
+  thread_local std::vector<SplitEntry> entries; // reused by the cells a thread processes
+  thread_local std::vector<SplitEntry> tmp;
   thread_local std::vector<Task> stack;
-  thread_local std::vector<std::pair<Index, Index>> done;
+  thread_local std::vector<Index> clusterOf; // by index into q
+  thread_local std::vector<Index> offsets;
+  thread_local std::vector<Index> input;
   const Index count = last - first;
   entries.resize(static_cast<std::size_t>(count));
+  tmp.resize(static_cast<std::size_t>(count));
   for (Index i = 0; i < count; ++i)
   {
     const Eigen::Vector3d& p = q[first[i]];
-    entries[i] = Entry{ { p[0], p[1] }, first[i] };
+    entries[i] = SplitEntry{ { p[0], p[1] }, first[i] };
   }
+  if (clusterOf.size() < q.size())
+  {
+    clusterOf.resize(q.size());
+  }
+  offsets.assign(1, 0);
   stack.assign(1, Task{ 0, count, k });
-  done.clear();
   while (!stack.empty())
   {
     const Task t = stack.back();
     stack.pop_back();
+    SplitEntry* const e = entries.data() + t.Begin;
     const Index n = t.End - t.Begin;
     if (t.K <= 1 || n <= 1)
     {
-      done.emplace_back(t.Begin, t.End);
+      // A finished cluster, numbered in the order clusters are completed.
+      const auto cluster = static_cast<Index>(offsets.size()) - 1;
+      for (Index i = 0; i < n; ++i)
+      {
+        clusterOf[e[i].Id] = cluster;
+      }
+      offsets.push_back(offsets.back() + n);
       continue;
     }
-    Entry* const e = entries.data() + t.Begin;
     double lo[2] = { e[0].U[0], e[0].U[1] }, hi[2] = { e[0].U[0], e[0].U[1] };
     for (Index i = 1; i < n; ++i)
     {
@@ -104,20 +184,24 @@ void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clus
     // as many points as samples it must produce.
     Index nLeft = static_cast<Index>(std::llround(static_cast<double>(n) * kLeft / t.K));
     nLeft = std::max(kLeft, std::min(n - kRight, nLeft));
-    std::nth_element(e, e + nLeft, e + n, [axis](const Entry& x, const Entry& y) {
-      return x.U[axis] < y.U[axis] || (x.U[axis] == y.U[axis] && x.Id < y.Id);
-    });
+    SelectFirst(e, n, nLeft, axis, tmp.data());
     // Left half first (depth first): clusters come out ordered along the split.
     stack.push_back({ t.Begin + nLeft, t.End, kRight });
     stack.push_back({ t.Begin, t.Begin + nLeft, kLeft });
   }
-  for (Index i = 0; i < count; ++i)
+  // Each cluster lists its members in the order they came in [first, last):
+  // the result depends on the splits' sets alone, not on the order the
+  // selection leaves within them. (A stable counting sort by cluster.)
+  input.assign(first, last);
+  for (const Index id : input)
   {
-    first[i] = entries[i].Id;
+    first[offsets[clusterOf[id]]++] = id;
   }
-  for (const auto& range : done)
+  Index begin = 0;
+  for (std::size_t c = 0; c + 1 < offsets.size(); ++c)
   {
-    out.Add(first + range.first, first + range.second);
+    out.Add(first + begin, first + offsets[c]);
+    begin = offsets[c];
   }
 }
 

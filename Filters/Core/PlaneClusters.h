@@ -66,8 +66,9 @@ VTKASMFILTERS_EXPORT Clusters LinkInPlane(
 
 /// Split `subset` (reordered in place) into exactly k >= 1 non-empty,
 /// spatially coherent clusters in the (u0, u1) plane by recursive median
-/// splits along the axis of larger extent, appended to `out`. Requires
-/// k <= subset.size().
+/// splits along the axis of larger extent (ties by index), appended to
+/// `out` left half first. Each cluster lists its members in the order they
+/// come in `subset`. Requires k <= subset.size().
 VTKASMFILTERS_EXPORT void SplitInPlane(
   const LocalPoints& q, Index* first, Index* last, Index k, Clusters& out);
 
