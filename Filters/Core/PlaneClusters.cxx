@@ -3,6 +3,8 @@
 // (the single linkage is in PlaneLinkage.cxx).
 #include "PlaneClusters.h"
 
+#include "Quickselect.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -65,59 +67,6 @@ inline bool SplitBefore(const SplitEntry& x, const SplitEntry& y, int axis)
 {
   const double a = x.U[axis], b = y.U[axis];
   return (a < b) | ((a == b) & (x.Id < y.Id));
-}
-
-// Moves the entries before `pivot` to the front of e[0, n), through `tmp`,
-// and returns their count. Every entry is written to both ends of `tmp` and
-// only the end it belongs to advances, so the loop has no branch to mispredict.
-Index PartitionBefore(SplitEntry* e, Index n, const SplitEntry& pivot, int axis, SplitEntry* tmp)
-{
-  Index front = 0, back = n - 1;
-  for (Index i = 0; i < n; ++i)
-  {
-    const SplitEntry x = e[i];
-    const bool before = SplitBefore(x, pivot, axis);
-    tmp[front] = x;
-    tmp[back] = x;
-    front += before;
-    back -= !before;
-  }
-  std::copy(tmp, tmp + n, e);
-  return front;
-}
-
-// Rearranges e[0, n) so that its first `nth` entries are the nth first in
-// the SplitBefore order (a selection like std::nth_element; the order within
-// each side is this function's own, which the caller does not keep).
-void SelectFirst(SplitEntry* e, Index n, Index nth, int axis, SplitEntry* tmp)
-{
-  auto before = [axis](
-                  const SplitEntry& x, const SplitEntry& y) { return SplitBefore(x, y, axis); };
-  Index lo = 0, hi = n;
-  // Quickselect rounds, each removing at least one entry (a median of three
-  // distinct entries has one on each side); a cell's points come in hash
-  // order, so the expected count is logarithmic, and past this many rounds
-  // the library's introselect finishes the job.
-  for (int round = 0; hi - lo > 16; ++round)
-  {
-    if (round == 64)
-    {
-      std::nth_element(e + lo, e + nth, e + hi, before);
-      return;
-    }
-    const SplitEntry& a = e[lo];
-    const SplitEntry& b = e[lo + (hi - lo) / 2];
-    const SplitEntry& c = e[hi - 1];
-    const SplitEntry pivot = before(a, b) ? (before(b, c) ? b : (before(a, c) ? c : a))
-                                          : (before(a, c) ? a : (before(b, c) ? c : b));
-    const Index middle = lo + PartitionBefore(e + lo, hi - lo, pivot, axis, tmp);
-    if (nth == middle)
-    {
-      return;
-    }
-    (nth < middle ? hi : lo) = middle;
-  }
-  std::sort(e + lo, e + hi, before);
 }
 } // namespace
 
@@ -184,7 +133,10 @@ void SplitInPlane(const LocalPoints& q, Index* first, Index* last, Index k, Clus
     // as many points as samples it must produce.
     Index nLeft = static_cast<Index>(std::llround(static_cast<double>(n) * kLeft / t.K));
     nLeft = std::max(kLeft, std::min(n - kRight, nLeft));
-    SelectFirst(e, n, nLeft, axis, tmp.data());
+    SelectFirst(
+      e, n, nLeft,
+      [axis](const SplitEntry& x, const SplitEntry& y) { return SplitBefore(x, y, axis); },
+      tmp.data());
     // Left half first (depth first): clusters come out ordered along the split.
     stack.push_back({ t.Begin + nLeft, t.End, kRight });
     stack.push_back({ t.Begin, t.Begin + nLeft, kLeft });
