@@ -82,6 +82,7 @@ set(ASM_FILTERS_EXTRA_PRIVATE_HEADERS
   Core/GroupBy.h
   Core/HoleFillingRecords.h
   Core/HoleFillingSteps.h
+  Core/NeighborsRanges.h
   Core/Quickselect.h
   Core/SpatialBuckets.h
   vtkASMFilterUtilities.h
