@@ -397,6 +397,29 @@ TEST(KeyPoints, ErrorToleranceBringsTheKeyPointToTheApex)
   EXPECT_GE(kc.MaxError, 1.0 / 16.0 - 5e-3);
 }
 
+TEST(KeyPoints, ErrorToleranceShrinksAlphaByAtLeastTenPercent)
+{
+  // Just above eps, Eq. 5 (alpha * eps / MKPE_c) would shrink alpha by a few
+  // percent per pass; the step is at least 10 %. With eps above 0.9 of the
+  // error at alpha = 1/8 and above the error at 0.9 / 8, one adaptation
+  // takes alpha to exactly 0.9 / 8 and stops there.
+  asmcore::CellFrame frame;
+  const auto q = ToFrame(Paraboloid(101), frame); // fine enough for 10 % of alpha
+  asmcore::KeyPointOptions options;
+  options.LinkDistance = asmcore::PlaneLinkDistance(q, 2.0);
+  const double first = asmcore::FindKeyClusters(q, options).MaxError;
+  options.Alpha = 0.9 * 0.125;
+  const double next = asmcore::FindKeyClusters(q, options).MaxError;
+  const double floor = std::max(next, 0.9 * first);
+  ASSERT_LT(floor, first) << "the sampling resolves the two bands";
+  options.Alpha = 0.125;
+  options.ErrorTolerance = 0.5 * (floor + first);
+  const auto kc = asmcore::FindKeyClusters(q, options);
+  EXPECT_EQ(kc.Iterations, 2);
+  EXPECT_DOUBLE_EQ(kc.Alpha, 0.9 * 0.125);
+  EXPECT_EQ(kc.MaxError, next);
+}
+
 TEST(KeyPoints, TwoBumpsGiveTwoTopKeyPoints)
 {
   const auto bumps = [](double x, double y) {

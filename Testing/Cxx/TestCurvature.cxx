@@ -184,6 +184,33 @@ TEST(Curvature, OffCentreQueryUsesTheFullFormula)
   }
 }
 
+TEST(Curvature, SkewQuadricNeedsTheCrossTerm)
+{
+  // z = x^2 / 2 + 0.3 xy + 0.2 y^2 on a grid symmetric about the origin: z is
+  // the PCA normal, the quadric fits exactly, and fxy = 0.3, so the formula's
+  // -2 fu fv fuv term counts wherever the gradient has two components (on
+  // the rotationally symmetric bowl above, fuv = 0 in any in-plane frame).
+  const auto f = [](double x, double y) { return 0.5 * x * x + 0.3 * x * y + 0.2 * y * y; };
+  const Cloud skew = asmtest::GridSurface(41, 1.0, f);
+  const std::vector<Index> ids = AllIds(skew);
+  const double down[3] = { 0, 0, -1 };
+  for (const auto& xy : { std::make_pair(0.0, 0.0), std::make_pair(0.5, 0.2),
+         std::make_pair(-0.4, 0.6), std::make_pair(0.3, -0.5) })
+  {
+    const double x = xy.first, y = xy.second;
+    const double fx = x + 0.3 * y, fy = 0.3 * x + 0.4 * y;
+    const double fxx = 1.0, fxy = 0.3, fyy = 0.4;
+    const double g = 1.0 + fx * fx + fy * fy;
+    const double expected = ((1.0 + fy * fy) * fxx - 2.0 * fx * fy * fxy + (1.0 + fx * fx) * fyy) /
+      (2.0 * g * std::sqrt(g));
+    const double p[3] = { x, y, f(x, y) };
+    const CurvatureEstimate e = asmcore::EstimateCurvatureAt(
+      skew.data(), ids.data(), static_cast<Index>(ids.size()), p, down);
+    EXPECT_TRUE(e.QuadricFit);
+    EXPECT_NEAR(expected, e.MeanCurvature, 1e-9) << "at " << x << " " << y;
+  }
+}
+
 // The quadric fit's rank test is the QR's (a pivot below 1e-6 of the
 // largest), taken on the normal equations' pivots squared: a neighbourhood
 // 50 times longer than wide, on an exact shallow bowl, is still fitted
