@@ -5,9 +5,11 @@
 // going to the lower sample index, plain and weighted, with one thread and
 // with two. On an integer lattice the ties are exact and everywhere, so the
 // pruning and the blocks of four candidates must not change which of
-// equally near samples wins.
+// equally near samples wins. And one round of RefineCovering, which starts
+// with such a pass: it never lets a cluster's covering radius grow.
 #include "Core/Assignment.h"
 #include "Core/CellNeighbors.h"
+#include "Core/Covering.h"
 #include "Core/Grid.h"
 #include "Core/Lloyd.h"
 
@@ -16,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -142,4 +145,57 @@ TEST(Assignment, NearestRingSampleOnASphere)
 {
   const Cloud c = asmtest::Sphere(20000, 1.0, 5);
   ExpectNearestRingSamples(c, 0.2);
+}
+
+TEST(Covering, ARoundKeepsTheMemberItSitsOnWhenNoCandidateCoversBetter)
+{
+  // One cell, one sample: a dense blob of 100 points around the origin and a
+  // sparse line of 10 points out to x = 2. The members nearest the centroid
+  // (x ~ 0.1) are the blob's, each 1.8 or more from the line's end; the
+  // line's point at x = 1 covers every member within 1.1. A sample sitting
+  // there must stay (the round tries the member it sits on too), and one
+  // sitting at the blob's far side must move to a better member.
+  Cloud c;
+  for (int i = 0; i < 10; ++i)
+  {
+    for (int j = 0; j < 10; ++j)
+    {
+      asmtest::Add(c, -0.1 + 0.02 * i, -0.1 + 0.02 * j, 0.0);
+    }
+  }
+  for (int k = 1; k <= 10; ++k)
+  {
+    asmtest::Add(c, 0.2 * k, 0.0, 0.0);
+  }
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, 10.0);
+  ASSERT_EQ(gridded.Grid.NumberOfCells(), 1);
+  // The covering radius of a sample at p: its farthest member (all points).
+  auto radius = [&](const double* p) {
+    double r = 0.0;
+    for (std::size_t i = 0; i < c.size(); i += 3)
+    {
+      r = std::max(r, asmcore::SquaredDistance(p, c.data() + i));
+    }
+    return std::sqrt(r);
+  };
+  for (const double startX : { 1.0, -0.1 })
+  {
+    asmcore::SampleSet samples;
+    samples.Start = { 0, 1 };
+    samples.Position = { startX, startX < 0.0 ? -0.1 : 0.0, 0.0 };
+    samples.Fixed = { 0 };
+    const double before = radius(samples.Position.data());
+    asmcore::PointArray<asmcore::SampleId> assign;
+    asmcore::RefineCovering(c.data(), gridded.Grid, gridded.Neighbors, samples, assign, {});
+    const double after = radius(samples.Position.data());
+    EXPECT_LE(after, before) << "from x = " << startX;
+    if (startX > 0.0)
+    {
+      EXPECT_EQ(samples.Position, std::vector<double>({ 1.0, 0.0, 0.0 }));
+    }
+    else
+    {
+      EXPECT_LT(after, before - 0.1);
+    }
+  }
 }
