@@ -112,6 +112,37 @@ TEST(KeyPointError, AShiftedCloudIsAsFarAsTheShift)
   EXPECT_NEAR(squared.Figure("AKPE"), d * d, 1e-14);
 }
 
+TEST(KeyPointError, AKPEIsTheMeanAndMKPETheLargest)
+{
+  // Two equal bumps in cells of their own (cell size 5, the grid from
+  // x = -1): the simplified cloud lifts the first by d1 and the second by
+  // d2, so half the key point pairs are d1 apart and half d2.
+  const double d1 = 0.01, d2 = 0.03;
+  Cloud original = Bump, simplified = Shifted(Bump, 0, 0, d1);
+  const Cloud far = Shifted(Bump, 10.0, 0, 0), farLifted = Shifted(Bump, 10.0, 0, d2);
+  original.insert(original.end(), far.begin(), far.end());
+  simplified.insert(simplified.end(), farLifted.begin(), farLifted.end());
+  ErrorRun run;
+  run.Filter->SetCellSize(5.0);
+  run.Execute(ToPolyData(original), ToPolyData(simplified));
+  EXPECT_NEAR(run.Figure("AKPE"), 0.5 * (d1 + d2), 1e-12);
+  EXPECT_NEAR(run.Figure("MKPE"), d2, 1e-12);
+}
+
+TEST(KeyPointError, HausdorffTakesTheLargerDirection)
+{
+  // The simplified cloud holds every original point and one more, 5 above
+  // the apex (0, 0, 0): original -> simplified is 0 everywhere, simplified
+  // -> original reaches 5, and the symmetric Hausdorff distance is 5.
+  Cloud simplified = Bump;
+  Add(simplified, 0.0, 0.0, 5.0);
+  ErrorRun run;
+  run.Execute(ToPolyData(Bump), ToPolyData(simplified));
+  EXPECT_EQ(run.Figure("MaxDistanceOriginalToSimplified"), 0.0);
+  EXPECT_NEAR(run.Figure("MaxDistanceSimplifiedToOriginal"), 5.0, 1e-12);
+  EXPECT_NEAR(run.Figure("HausdorffDistance"), 5.0, 1e-12);
+}
+
 TEST(KeyPointError, MeasuresAnASMSimplification)
 {
   auto bunny = ReadPLY("bunny.ply");
