@@ -114,12 +114,18 @@ TEST(ASMSimplify, BunnyAtFivePercentWithArraysAndFieldData)
 
 TEST(ASMSimplify, ErrorToleranceBoundsMKPEOnTheBunny)
 {
+  // The paper mode: its key points are key cluster centroids, with an error
+  // to bound (the default mode puts them on their extreme points: MKPE 0).
   auto input = ReadPLY("bunny.ply");
+  auto paper = [](FilterRun& run) { run.Filter->SetMode(vtkASMSimplify::PAPER); };
   FilterRun loose;
+  paper(loose);
   const double mkpe = FieldValue(loose.Execute(input), "MKPE");
+  ASSERT_GT(mkpe, 0.0);
   for (double factor : { 0.5, 0.1 })
   {
     FilterRun bounded;
+    paper(bounded);
     bounded.Filter->SetErrorTolerance(factor * mkpe);
     vtkPolyData* out = bounded.Execute(input);
     EXPECT_EQ(out->GetNumberOfPoints(), 1797);
@@ -127,18 +133,28 @@ TEST(ASMSimplify, ErrorToleranceBoundsMKPEOnTheBunny)
   }
   // The bound holds for snapped key points too.
   FilterRun snapped;
+  paper(snapped);
   snapped.Filter->SnapToInputPointsOn();
   snapped.Filter->SetErrorTolerance(0.2 * mkpe);
   EXPECT_LE(FieldValue(snapped.Execute(input), "MKPE"), 0.2 * mkpe);
-  // Relative to the bounding-box diagonal.
+  // Relative to the bounding-box diagonal: the same as the absolute bound
+  // e * diagonal, and not the same as e itself.
   double b[6];
   input->GetBounds(b);
   const double diagonal = std::sqrt(
     (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
-  FilterRun relative;
-  relative.Filter->SetErrorTolerance(1e-4);
-  relative.Filter->RelativeErrorToleranceOn();
-  EXPECT_LE(FieldValue(relative.Execute(input), "MKPE"), 1e-4 * diagonal * (1 + 1e-6));
+  const double e = 0.01;
+  auto boundedMKPE = [&](double tolerance, bool relativeToDiagonal) {
+    FilterRun run;
+    paper(run);
+    run.Filter->SetErrorTolerance(tolerance);
+    run.Filter->SetRelativeErrorTolerance(relativeToDiagonal);
+    return FieldValue(run.Execute(input), "MKPE");
+  };
+  const double relative = boundedMKPE(e, true);
+  EXPECT_LE(relative, e * diagonal * (1 + 1e-6));
+  EXPECT_NEAR(relative, boundedMKPE(e * diagonal, false), 1e-9 * mkpe);
+  EXPECT_NE(relative, boundedMKPE(e, false));
 }
 
 TEST(ASMSimplify, AveragesInputArraysOverClusters)
