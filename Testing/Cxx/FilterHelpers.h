@@ -13,12 +13,15 @@
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMP.h" // VTK_SMP_ENABLE_*: the backends this VTK was built with
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace asmtest
 {
@@ -116,6 +119,97 @@ struct FilterRun : ObservedFilter<vtkASMSimplify>
     this->Filter->SetNumberOfOutputPoints(n);
   }
 };
+
+/// Restores vtkSMPTools' backend and thread count when it goes out of scope
+/// (a test that picks them leaves the next test what it found).
+class SMPScope
+{
+public:
+  SMPScope()
+    : Backend(vtkSMPTools::GetBackend())
+  {
+  }
+  ~SMPScope()
+  {
+    vtkSMPTools::SetBackend(this->Backend.c_str());
+    vtkSMPTools::Initialize(0);
+  }
+  SMPScope(const SMPScope&) = delete;
+  SMPScope& operator=(const SMPScope&) = delete;
+
+private:
+  std::string Backend;
+};
+
+/// The threaded vtkSMPTools backends this VTK was built with: STDThread,
+/// and TBB or OpenMP where present (VTK 9.1 of Debian defaults to TBB).
+inline std::vector<std::string> ThreadedSMPBackends()
+{
+  std::vector<std::string> backends;
+#if VTK_SMP_ENABLE_STDTHREAD
+  backends.emplace_back("STDThread");
+#endif
+#if VTK_SMP_ENABLE_TBB
+  backends.emplace_back("TBB");
+#endif
+#if VTK_SMP_ENABLE_OPENMP
+  backends.emplace_back("OpenMP");
+#endif
+  return backends;
+}
+
+/// One run of a threading test: its backend and thread count ("TBB, 2
+/// threads") and what it output, flattened.
+struct ThreadingRun
+{
+  std::string Label;
+  std::vector<double> Output;
+};
+
+/// Calls run() (returning std::vector<double>) with every threaded backend of
+/// this VTK, with 1 and then 2 threads each, for the tests that the output
+/// does not depend on the threading; restores the backend and thread count
+/// found.
+template <class Run>
+std::vector<ThreadingRun> RunForEachThreading(Run&& run)
+{
+  SMPScope restore;
+  std::vector<ThreadingRun> runs;
+  for (const std::string& backend : ThreadedSMPBackends())
+  {
+    if (!vtkSMPTools::SetBackend(backend.c_str()))
+    {
+      ADD_FAILURE() << "vtkSMP.h lists the " << backend << " backend, SetBackend refuses it";
+      continue;
+    }
+    for (int threads : { 1, 2 })
+    {
+      vtkSMPTools::Initialize(threads);
+      runs.push_back(
+        { backend + ", " + std::to_string(threads) + (threads == 1 ? " thread" : " threads"),
+          run() });
+    }
+  }
+  return runs;
+}
+
+/// Two runs or more, the first with some output, and every one's output
+/// equal to the first's, bit for bit.
+inline ::testing::AssertionResult SameOutputs(const std::vector<ThreadingRun>& runs)
+{
+  if (runs.size() < 2 || runs[0].Output.empty())
+  {
+    return ::testing::AssertionFailure() << runs.size() << " runs, nothing to compare";
+  }
+  for (const ThreadingRun& other : runs)
+  {
+    if (other.Output != runs[0].Output)
+    {
+      return ::testing::AssertionFailure() << runs[0].Label << " and " << other.Label << " differ";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
 } // namespace asmtest
 
 #endif

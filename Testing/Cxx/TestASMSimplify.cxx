@@ -272,11 +272,7 @@ TEST(ASMSimplify, SnapToInputPointsKeepsMeasuredPoints)
 TEST(ASMSimplify, SameOutputAtOneAndTwoThreads)
 {
   auto input = ReadPLY("bunny.ply");
-  ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
-  std::vector<std::vector<double>> outputs;
-  for (int threads : { 1, 2 })
-  {
-    vtkSMPTools::Initialize(threads);
+  const std::vector<ThreadingRun> runs = RunForEachThreading([&]() {
     FilterRun run;
     run.Filter->SetOutputFraction(0.05);
     run.Filter->SetErrorTolerance(1e-4);
@@ -292,12 +288,9 @@ TEST(ASMSimplify, SameOutputAtOneAndTwoThreads)
       flat.push_back(out->GetPointData()->GetArray("KeyPoint")->GetTuple1(i));
     }
     flat.push_back(FieldValue(out, "AKPE"));
-    outputs.push_back(flat);
-  }
-  vtkSMPTools::Initialize(0);
-  vtkSMPTools::SetBackend("Sequential");
-  ASSERT_FALSE(outputs[0].empty());
-  EXPECT_EQ(outputs[0], outputs[1]);
+    return flat;
+  });
+  EXPECT_TRUE(SameOutputs(runs));
 }
 
 TEST(ASMSimplify, SameSeedSameOutputOtherSeedOtherChoice)

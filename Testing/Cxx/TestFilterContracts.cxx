@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <iostream>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -292,6 +293,31 @@ TEST(FilterContracts, KeyPointErrorReExecutionEqualsAFreshRun)
   ExpectSameFields(x->GetRowData(), y->GetRowData(), "table");
 }
 
+// The threading tests (RunForEachThreading) run every threaded backend this
+// VTK has, so they cover the one it uses by default (TBB in Debian's VTK 9.1,
+// Sequential in ParaView 5.11's VTK 9.2).
+TEST(FilterContracts, ThreadingTestsCoverTheDefaultBackend)
+{
+  const std::string backend = vtkSMPTools::GetBackend();
+  const std::vector<std::string> threaded = asmtest::ThreadedSMPBackends();
+  std::string list;
+  for (const std::string& name : threaded)
+  {
+    list += " " + name;
+  }
+  RecordProperty("ThreadedBackends", list);
+  std::cout << "vtkSMPTools backend " << backend << "; threaded backends:" << list << "\n";
+  ASSERT_FALSE(threaded.empty());
+  EXPECT_TRUE(backend == "Sequential" ||
+    std::find(threaded.begin(), threaded.end(), backend) != threaded.end())
+    << backend;
+  const std::vector<asmtest::ThreadingRun> runs =
+    asmtest::RunForEachThreading([]() { return std::vector<double>{ 1.0 }; });
+  EXPECT_EQ(runs.size(), 2 * threaded.size());
+  EXPECT_TRUE(asmtest::SameOutputs(runs));
+  EXPECT_EQ(vtkSMPTools::GetBackend(), backend); // restored
+}
+
 // Small clouds run on the calling thread (MinimumPointsForThreads): the
 // helpers the filter runs its loops through either hand the whole range to
 // the calling thread or go through vtkSMPTools.
@@ -302,6 +328,7 @@ TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
   filter->SetMinimumPointsForThreads(-5);
   EXPECT_EQ(filter->GetMinimumPointsForThreads(), 0);
 
+  asmtest::SMPScope restore;
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   vtkSMPTools::Initialize(2);
   const std::thread::id caller = std::this_thread::get_id();
@@ -350,8 +377,6 @@ TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
     EXPECT_FALSE(otherThread);
     EXPECT_FALSE(asmvtk::SMPExecution(filter, 0.0, 1.0, true).For);
   }
-  vtkSMPTools::Initialize(0);
-  vtkSMPTools::SetBackend("Sequential");
 }
 
 // The core's loops without a parallel For run on the calling thread in a
