@@ -8,8 +8,10 @@
  *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
  *               [--fraction F] [--curvature] [--ply file] [--stages] [--floor]
  *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
- *               [--set Name=value,...] [--error] [--loops]
+ *               [--set Name=value,...] [--error] [--loops] [--backend B]
  *
+ * --backend picks vtkSMPTools' backend (default STDThread; TBB or OpenMP
+ * when this VTK has them, e.g. Debian's VTK 9.1: scripts/fetch-vtk91.sh).
  * --set sets more properties of vtkASMSimplify by name, as the benchmarks'
  * --asm does (asmbench::ApplyAsmSettings; e.g. --set FillHoles=0); it needs
  * the benchmarks' support library (built unless the benchmarks are off).
@@ -256,6 +258,7 @@ int main(int argc, char* argv[])
   const char* dump = nullptr;
   int mode = -1;
   std::string settings;
+  std::string backend = "STDThread";
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -278,6 +281,8 @@ int main(int argc, char* argv[])
       ++i;
     else if (a == "--set")
       settings = next, ++i;
+    else if (a == "--backend")
+      backend = next, ++i;
     else if (a == "--curvature")
       curvature = true;
     else if (a == "--coherent")
@@ -320,7 +325,11 @@ int main(int argc, char* argv[])
   }
   if (ply)
     sizes = { 0 };
-  vtkSMPTools::SetBackend("STDThread");
+  if (!vtkSMPTools::SetBackend(backend.c_str()))
+  {
+    std::fprintf(stderr, "this VTK has no vtkSMPTools backend %s\n", backend.c_str());
+    return 2;
+  }
   std::printf("%10s %7s %9s %10s %9s %10s %9s %12s %10s\n", "points", "threads", "curvature",
     "wall s", "Mpts/s", "cpu s", "Mpts/cpu", "peak B/pt", "output");
   for (long n : sizes)
