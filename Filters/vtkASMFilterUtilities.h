@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #if defined(__linux__)
@@ -43,6 +44,20 @@ namespace asmvtk
 inline bool UseThreads(bool threads)
 {
   return threads && vtkSMPTools::GetEstimatedNumberOfThreads() > 1;
+}
+
+/// vtkASMSimplify::MinimumPointsForThreads as it applies: a value >= 0 as
+/// it is; automatic (< 0): 50000 with the STDThread backend, whose loops in
+/// VTK 9.1-9.2 start their threads anew (a second thread does not pay below
+/// about 50 k points on 2 cores), 0 with the backends that keep their
+/// threads between loops (TBB, OpenMP).
+inline vtkIdType MinimumPointsForThreads(vtkIdType value)
+{
+  if (value >= 0)
+  {
+    return value;
+  }
+  return std::string(vtkSMPTools::GetBackend()) == "STDThread" ? 50000 : 0;
 }
 
 /// vtkSMPTools::For(begin, end, body), or body(begin, end) on the calling

@@ -120,7 +120,7 @@ int vtkASMSimplify::RequestData(
 
   // Small clouds on the calling thread (MinimumPointsForThreads).
   const bool threads =
-    this->MinimumPointsForThreads <= 0 || numberOfPoints >= this->MinimumPointsForThreads;
+    numberOfPoints >= asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads);
 
   // Coordinates, finite points, and the requested output size.
   std::unique_ptr<double[]> coordinateCopy;
@@ -421,7 +421,10 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
-  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads << "\n";
+  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads
+     << (this->MinimumPointsForThreads < 0 ? " (automatic: " : " (")
+     << asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads) << " with the "
+     << vtkSMPTools::GetBackend() << " backend)\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "AlwaysDistribute: " << this->AlwaysDistribute << "\n";
 }

@@ -579,15 +579,19 @@ public:
   /**
    * Inputs with fewer points than this (per process) are simplified on the
    * calling thread alone; larger ones run their loops through vtkSMPTools.
-   * In points, >= 0; default 50000; 0: always through vtkSMPTools. VTK 9.2's
-   * STDThread backend starts its threads anew in every parallel loop (about
-   * 0.1 ms each, a few hundred loops per run in FEATURE_PRESERVING mode),
-   * which costs a small cloud more than a second thread gains: measured on 2
-   * cores, 2 threads were slower below about 50 k points. When vtkSMPTools
-   * has one thread (Sequential backend, or vtkSMPTools::Initialize(1)) every
-   * input runs on the calling thread. The output is the same either way.
+   * In points; 0: always through vtkSMPTools; default -1: automatic, 50000
+   * with vtkSMPTools' STDThread backend and 0 with the others (TBB, OpenMP).
+   * VTK 9.1-9.2's STDThread backend starts its threads anew in every
+   * parallel loop (about 0.1 ms each, a few hundred loops per run in
+   * FEATURE_PRESERVING mode), which costs a small cloud more than a second
+   * thread gains: measured on 2 cores, 2 threads were slower below about
+   * 50 k points. TBB keeps its threads between loops: with Debian's VTK 9.1
+   * on 2 cores, 2 threads were faster from 6.5 k points up (36 k points:
+   * 0.019 s against 0.028). When vtkSMPTools has one thread (Sequential
+   * backend, or vtkSMPTools::Initialize(1)) every input runs on the calling
+   * thread. The output is the same either way.
    */
-  vtkSetClampMacro(MinimumPointsForThreads, vtkIdType, 0, VTK_ID_MAX);
+  vtkSetClampMacro(MinimumPointsForThreads, vtkIdType, -1, VTK_ID_MAX);
   vtkGetMacro(MinimumPointsForThreads, vtkIdType);
   ///@}
 
@@ -667,7 +671,7 @@ protected:
   bool GenerateCurvature = true;
   int CurvatureNeighbors = 20;
   int OutputPointsPrecision = DEFAULT_PRECISION;
-  vtkIdType MinimumPointsForThreads = 50000;
+  vtkIdType MinimumPointsForThreads = -1;
   vtkMultiProcessController* Controller = nullptr;
   bool AlwaysDistribute = false;
 

@@ -324,11 +324,20 @@ TEST(FilterContracts, ThreadingTestsCoverTheDefaultBackend)
 TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
 {
   vtkNew<vtkASMSimplify> filter;
-  EXPECT_EQ(filter->GetMinimumPointsForThreads(), 50000);
+  EXPECT_EQ(filter->GetMinimumPointsForThreads(), -1); // automatic
   filter->SetMinimumPointsForThreads(-5);
-  EXPECT_EQ(filter->GetMinimumPointsForThreads(), 0);
+  EXPECT_EQ(filter->GetMinimumPointsForThreads(), -1);
+  filter->SetMinimumPointsForThreads(1234);
+  EXPECT_EQ(asmvtk::MinimumPointsForThreads(filter->GetMinimumPointsForThreads()), 1234);
 
   asmtest::SMPScope restore;
+  // Automatic: 50000 with STDThread (threads started anew in every loop), 0
+  // with the backends that keep theirs.
+  for (const std::string& backend : asmtest::ThreadedSMPBackends())
+  {
+    ASSERT_TRUE(vtkSMPTools::SetBackend(backend.c_str()));
+    EXPECT_EQ(asmvtk::MinimumPointsForThreads(-1), backend == "STDThread" ? 50000 : 0) << backend;
+  }
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   vtkSMPTools::Initialize(2);
   const std::thread::id caller = std::this_thread::get_id();
