@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds the module with its Python wrapping against Debian 12's own VTK 9.1
+# (the oldest VTK the module supports; unpacked by scripts/fetch-vtk91.sh,
+# since Debian cannot install it next to ParaView) in build-vtk91/, without
+# ParaView, and runs the tests that the sanitizer build does not: the Python
+# ones (the asmvtk package imported next to VTK 9.1's own vtkmodules) and
+# the installed C++ example. The C++ tests run against this VTK in
+# scripts/test-sanitizers.sh. Extra arguments go to ctest.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+bash scripts/install-deps.sh
+vtk_dir=$(bash scripts/fetch-vtk91.sh)
+prefix="${vtk_dir%/lib/x86_64-linux-gnu/cmake/vtk-9.1}"
+# (Its libraries and Python modules are not on the default paths.)
+export LD_LIBRARY_PATH="$prefix/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export PYTHONPATH="$prefix/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+
+cmake -S . -B build-vtk91 -G Ninja -DCMAKE_BUILD_TYPE=Release -DASM_USE_PARAVIEW=OFF \
+  -DVTK_DIR="$vtk_dir" -DASM_WRAP_PYTHON=ON -DASM_BUILD_BENCHMARKS=OFF \
+  -DPython3_EXECUTABLE=/usr/bin/python3
+cmake --build build-vtk91 --parallel "$(nproc)"
+ctest --test-dir build-vtk91 -L 'python|install' --output-on-failure "$@"
+# The wrapping was built and tested, not skipped.
+test -n "$(find build-vtk91 -path '*asmvtk/vtkASMFilters*.so' -print -quit)"
