@@ -179,6 +179,9 @@ int vtkKeyPointError::RequestData(
     ? asmcore::KeyPointDistance::Squared
     : asmcore::KeyPointDistance::Euclidean;
   options.PlaneNeighbors = this->PlaneNeighbors;
+  // Small clouds on the calling thread (MinimumPointsForThreads).
+  const bool threads = static_cast<vtkIdType>(orig.Ids.size()) >=
+    asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads);
   asmvtk::DistributedComparison shared;
   if (distributed)
   {
@@ -195,15 +198,16 @@ int vtkKeyPointError::RequestData(
     }
     shared = asmvtk::CompareDistributed(comm, orig.Xyz, orig.Ids, simp.Xyz, simp.Ids,
       inNormals && inNormals->GetNumberOfComponents() == 3 ? normals.data() : nullptr, options,
-      this->GenerateCurvature ? this->CurvatureNeighbors : 0, asmvtk::SMPExecution(this, 0.0, 0.8));
+      this->GenerateCurvature ? this->CurvatureNeighbors : 0,
+      asmvtk::SMPExecution(this, 0.0, 0.8, threads));
   }
   const asmcore::Neighbors originalTree = distributed
     ? asmcore::Neighbors()
-    : asmcore::Neighbors(orig.Xyz, orig.Ids, asmvtk::SMPExecution(this, 0.0, 0.0));
+    : asmcore::Neighbors(orig.Xyz, orig.Ids, asmvtk::SMPExecution(this, 0.0, 0.0, threads));
   const asmcore::Comparison result = distributed
     ? shared.Figures
     : asmcore::CompareClouds(orig.Xyz, orig.Ids, originalTree, simp.Xyz, simp.Ids, options,
-        asmvtk::SMPExecution(this, 0.0, 0.8));
+        asmvtk::SMPExecution(this, 0.0, 0.8, threads));
   if (result.Aborted)
   {
     vtkWarningMacro(<< "Aborted: the output is empty.");
@@ -257,7 +261,7 @@ int vtkKeyPointError::RequestData(
     vtkNew<vtkPointData> finite;
     if (!asmvtk::AddCurvatureArrays(finite, orig.Xyz, orig.Ids, originalTree, queries.data(),
           static_cast<vtkIdType>(simp.Ids.size()), useNormals ? normals.data() : nullptr,
-          this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.8, 0.95)))
+          this->CurvatureNeighbors, asmvtk::SMPExecution(this, 0.8, 0.95, threads)))
     {
       vtkWarningMacro(<< "Aborted: the output is empty.");
       output->Initialize();
@@ -333,5 +337,9 @@ void vtkKeyPointError::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlaneNeighbors: " << this->PlaneNeighbors << "\n";
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
+  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads
+     << (this->MinimumPointsForThreads < 0 ? " (automatic: " : " (")
+     << asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads) << " with the "
+     << vtkSMPTools::GetBackend() << " backend)\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -329,6 +329,10 @@ TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
   EXPECT_EQ(filter->GetMinimumPointsForThreads(), -1);
   filter->SetMinimumPointsForThreads(1234);
   EXPECT_EQ(asmvtk::MinimumPointsForThreads(filter->GetMinimumPointsForThreads()), 1234);
+  vtkNew<vtkKeyPointError> error; // the same property, the same rule
+  EXPECT_EQ(error->GetMinimumPointsForThreads(), -1);
+  error->SetMinimumPointsForThreads(-7);
+  EXPECT_EQ(error->GetMinimumPointsForThreads(), -1);
 
   asmtest::SMPScope restore;
   // Automatic: 50000 with STDThread (threads started anew in every loop), 0
