@@ -4,12 +4,15 @@
  * curvature off and on) against vtkVoxelGrid (leaf size searched, not timed,
  * so that its count is within 1 % of N_s) and vtkMaskPoints (random, exact
  * count) on the same inputs, at each output fraction and thread count
- * (vtkSMPTools' STDThread backend), in one run (issue 8).
+ * (vtkSMPTools' STDThread backend, or --backend), in one run (issue 8).
  *
  *   asm_speed_benchmark [--quick | --readme] [--runs 5] [--threads 1,2]
  *                       [--fractions 0.05,0.01,0.2] [--inputs spec,...]
  *                       [--no-memory] [--markdown] [--asm NAME:SETTINGS ...]
- *                       [--cgal] [more inputs ...]
+ *                       [--cgal] [--backend STDThread] [more inputs ...]
+ *
+ * --backend picks vtkSMPTools' backend (default STDThread; TBB or OpenMP when
+ * this VTK has them, e.g. Debian's VTK 9.1: scripts/fetch-vtk91.sh).
  *
  * --asm adds a row for vtkASMSimplify with more properties set (the default
  * mode unless Mode=paper; ApplyAsmSettings), e.g. --asm "ASM fast:FillHoles=0";
@@ -70,7 +73,8 @@ void Usage()
        "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
        "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
        "       (the default mode with those properties; Mode=paper for the paper mode)\n"
-       "--cgal: also CGAL's grid and hierarchy simplification (built with libcgal-dev)\n";
+       "--cgal: also CGAL's grid and hierarchy simplification (built with libcgal-dev)\n"
+       "--backend: vtkSMPTools' backend (default STDThread; TBB, OpenMP where built)\n";
 }
 
 /// The first figure of /proc/loadavg ("?" elsewhere): timings on a busy machine are slower.
@@ -81,9 +85,12 @@ std::string LoadAverage()
   return in >> first ? first : std::string("?");
 }
 
+/// vtkSMPTools' backend of every timed run (--backend).
+std::string Backend = "STDThread";
+
 void SetThreads(int threads)
 {
-  vtkSMPTools::SetBackend("STDThread");
+  vtkSMPTools::SetBackend(Backend.c_str());
   vtkSMPTools::Initialize(threads);
 }
 
@@ -242,6 +249,15 @@ int main(int argc, char* argv[])
         threads.push_back(std::max(1, std::atoi(t.c_str())));
       }
     }
+    else if (arg == "--backend" && hasValue)
+    {
+      Backend = argv[++i];
+      if (!vtkSMPTools::SetBackend(Backend.c_str()))
+      {
+        std::cerr << "--backend: this VTK has no vtkSMPTools backend " << Backend << "\n";
+        return 2;
+      }
+    }
     else if (arg == "--asm" && hasValue)
     {
       if (!AddAsmVariant(argv[++i], configs))
@@ -296,7 +312,7 @@ int main(int argc, char* argv[])
   std::cout << "# asm_speed_benchmark" << (readme ? " --readme" : "") << ", " << date
             << ", median of "
             << (readme ? std::string("5 run(s)") : std::to_string(runs) + " run(s)")
-            << ", vtkSMPTools STDThread backend, load average " << LoadAverage() << "\n"
+            << ", vtkSMPTools " << Backend << " backend, load average " << LoadAverage() << "\n"
             << "# Mpt/s: million input points per second; x peer: peer time / ASM time (> 1: ASM"
                " faster); x thr: time with the first thread count / this row's; mem: peak memory"
                " beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
