@@ -60,6 +60,15 @@ inline vtkIdType MinimumPointsForThreads(vtkIdType value)
   return std::string(vtkSMPTools::GetBackend()) == "STDThread" ? 50000 : 0;
 }
 
+/// A MinimumPointsForThreads value and what it means here, for PrintSelf:
+/// "-1 (automatic: 50000 with the STDThread backend)".
+inline std::string DescribeMinimumPointsForThreads(vtkIdType value)
+{
+  return std::to_string(value) + (value < 0 ? " (automatic: " : " (") +
+    std::to_string(MinimumPointsForThreads(value)) + " with the " + vtkSMPTools::GetBackend() +
+    " backend)";
+}
+
 /// vtkSMPTools::For(begin, end, body), or body(begin, end) on the calling
 /// thread when `threads` is false (small clouds: see
 /// vtkASMSimplify::MinimumPointsForThreads) or vtkSMPTools has one thread.

@@ -421,10 +421,8 @@ void vtkASMSimplify::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
-  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads
-     << (this->MinimumPointsForThreads < 0 ? " (automatic: " : " (")
-     << asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads) << " with the "
-     << vtkSMPTools::GetBackend() << " backend)\n";
+  os << indent << "MinimumPointsForThreads: "
+     << asmvtk::DescribeMinimumPointsForThreads(this->MinimumPointsForThreads) << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "AlwaysDistribute: " << this->AlwaysDistribute << "\n";
 }

@@ -337,9 +337,7 @@ void vtkKeyPointError::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PlaneNeighbors: " << this->PlaneNeighbors << "\n";
   os << indent << "GenerateCurvature: " << this->GenerateCurvature << "\n";
   os << indent << "CurvatureNeighbors: " << this->CurvatureNeighbors << "\n";
-  os << indent << "MinimumPointsForThreads: " << this->MinimumPointsForThreads
-     << (this->MinimumPointsForThreads < 0 ? " (automatic: " : " (")
-     << asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads) << " with the "
-     << vtkSMPTools::GetBackend() << " backend)\n";
+  os << indent << "MinimumPointsForThreads: "
+     << asmvtk::DescribeMinimumPointsForThreads(this->MinimumPointsForThreads) << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -340,7 +340,10 @@ TEST(FilterContracts, SmallCloudsRunOnTheCallingThread)
   for (const std::string& backend : asmtest::ThreadedSMPBackends())
   {
     ASSERT_TRUE(vtkSMPTools::SetBackend(backend.c_str()));
-    EXPECT_EQ(asmvtk::MinimumPointsForThreads(-1), backend == "STDThread" ? 50000 : 0) << backend;
+    const vtkIdType automatic = backend == "STDThread" ? 50000 : 0;
+    EXPECT_EQ(asmvtk::MinimumPointsForThreads(-1), automatic) << backend;
+    EXPECT_EQ(asmvtk::DescribeMinimumPointsForThreads(-1),
+      "-1 (automatic: " + std::to_string(automatic) + " with the " + backend + " backend)");
   }
   ASSERT_TRUE(vtkSMPTools::SetBackend("STDThread"));
   vtkSMPTools::Initialize(2);
