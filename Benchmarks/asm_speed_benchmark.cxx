@@ -46,6 +46,7 @@
 #include "SpeedTargets.h"
 
 #include "vtkSMPTools.h"
+#include "vtkVersion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -311,8 +312,9 @@ int main(int argc, char* argv[])
   const double started = Now();
   std::cout << "# asm_speed_benchmark" << (readme ? " --readme" : "") << ", " << date
             << ", median of "
-            << (readme ? std::string("5 run(s)") : std::to_string(runs) + " run(s)")
-            << ", vtkSMPTools " << Backend << " backend, load average " << LoadAverage() << "\n"
+            << (readme ? std::string("5 run(s)") : std::to_string(runs) + " run(s)") << ", VTK "
+            << vtkVersion::GetVTKVersion() << ", vtkSMPTools " << Backend
+            << " backend, load average " << LoadAverage() << "\n"
             << "# Mpt/s: million input points per second; x peer: peer time / ASM time (> 1: ASM"
                " faster); x thr: time with the first thread count / this row's; mem: peak memory"
                " beyond input and output, bytes per input point; *: count not within 1 % of N_s\n";
