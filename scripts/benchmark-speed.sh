@@ -20,12 +20,11 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 build=build
 if [ "${1:-}" = "--vtk91" ]; then
   shift
-  vtk_dir=$(bash scripts/fetch-vtk91.sh)
-  export LD_LIBRARY_PATH="${vtk_dir%/cmake/vtk-9.1}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  . scripts/vtk91-env.sh
   build=build-vtk91-bench
   if [ ! -f "$build/build.ninja" ]; then
     cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DASM_USE_PARAVIEW=OFF \
-      -DVTK_DIR="$vtk_dir" -DASM_WRAP_PYTHON=OFF -DBUILD_TESTING=OFF -DASM_BUILD_BENCHMARKS=ON
+      -DVTK_DIR="$ASM_VTK91_DIR" -DASM_WRAP_PYTHON=OFF -DBUILD_TESTING=OFF -DASM_BUILD_BENCHMARKS=ON
   fi
 elif [ ! -f build/build.ninja ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release

@@ -7,7 +7,8 @@
 #   bash scripts/fetch-vtk91.sh        # prints the VTK_DIR to configure with
 #
 # Then: LD_LIBRARY_PATH=build-deps/vtk-9.1/usr/lib/x86_64-linux-gnu for the
-# build (GoogleTest lists the tests by running them) and the tests.
+# build (GoogleTest lists the tests by running them) and the tests; sourcing
+# scripts/vtk91-env.sh does both and sets PYTHONPATH.
 # Packages: libvtk9.1 (the libraries), libvtk9-dev (headers, CMake config),
 # vtk9 (the wrapping tools the config names) and python3-vtk9 (its Python
 # targets, which the config checks for); libtbb-dev is installed for real

@@ -20,10 +20,8 @@ bash scripts/install-deps.sh
 if [ -n "${ASM_VTK_DIR:-}" ]; then
   vtk_dir="$ASM_VTK_DIR"
 else
-  vtk_dir=$(bash scripts/fetch-vtk91.sh)
-  # (Its libraries are not on the loader's path: GoogleTest's test listing at
-  # build time and the tests need them.)
-  export LD_LIBRARY_PATH="${vtk_dir%/cmake/vtk-9.1}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  . scripts/vtk91-env.sh
+  vtk_dir="$ASM_VTK91_DIR"
 fi
 
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"

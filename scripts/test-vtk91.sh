@@ -10,14 +10,10 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 bash scripts/install-deps.sh
-vtk_dir=$(bash scripts/fetch-vtk91.sh)
-prefix="${vtk_dir%/lib/x86_64-linux-gnu/cmake/vtk-9.1}"
-# (Its libraries and Python modules are not on the default paths.)
-export LD_LIBRARY_PATH="$prefix/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-export PYTHONPATH="$prefix/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+. scripts/vtk91-env.sh # its libraries and vtkmodules on the paths
 
 cmake -S . -B build-vtk91 -G Ninja -DCMAKE_BUILD_TYPE=Release -DASM_USE_PARAVIEW=OFF \
-  -DVTK_DIR="$vtk_dir" -DASM_WRAP_PYTHON=ON -DASM_BUILD_BENCHMARKS=OFF \
+  -DVTK_DIR="$ASM_VTK91_DIR" -DASM_WRAP_PYTHON=ON -DASM_BUILD_BENCHMARKS=OFF \
   -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build-vtk91 --parallel "$(nproc)"
 ctest --test-dir build-vtk91 -L 'python|install' --output-on-failure "$@"
