@@ -11,8 +11,9 @@
 # scripts/vtk91-env.sh does both and sets PYTHONPATH.
 # Packages: libvtk9.1 (the libraries), libvtk9-dev (headers, CMake config),
 # vtk9 (the wrapping tools the config names) and python3-vtk9 (its Python
-# targets, which the config checks for); libtbb-dev is installed for real
-# (no conflict), for the TBB backend. Already unpacked: nothing is fetched.
+# targets, which the config checks for); libtbb-dev, which that VTK's TBB
+# backend needs, is installed for real (no conflict) by install-deps.sh.
+# Already unpacked: nothing is fetched.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -23,13 +24,10 @@ if [ -f "$vtk_dir/vtk-config.cmake" ] && [ -f "$prefix/.complete" ]; then
   exit 0
 fi
 
+# (The project's packages, libtbb-dev among them, for that VTK's TBB backend.)
+bash scripts/install-deps.sh >&2
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-if ! dpkg-query -W -f='${Status}' libtbb-dev 2>/dev/null | grep -q "install ok installed"; then
-  $SUDO apt-get install -y -q --no-install-recommends libtbb-dev >&2 ||
-    { $SUDO apt-get update -q >&2 && $SUDO apt-get install -y -q --no-install-recommends libtbb-dev >&2; }
-fi
 
 debs="$PWD/build-deps/debs"
 rm -rf "$prefix" "$debs"

@@ -22,6 +22,8 @@ PKGS=(
   xvfb xauth libgl1-mesa-dri   # Xvfb + Mesa llvmpipe (software OpenGL) for the gui tests
   # header-only CGAL: the CGAL peers of the quality benchmark (Benchmarks/)
   libcgal-dev
+  # TBB, the vtkSMPTools backend of Debian's own VTK 9.1 (scripts/fetch-vtk91.sh)
+  libtbb-dev
 )
 
 missing=()
