@@ -132,7 +132,7 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 /// zero-filled first). Both passes run in parallel (vtkSMPTools) over fixed
 /// blocks: the result does not depend on the thread count.
 inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
-  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads = true, bool floatsInPlace = false)
+  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads, bool floatsInPlace = false)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -262,7 +262,7 @@ inline const double* TuplesAsDoubles(vtkDataArray* data, std::unique_ptr<double[
 /// goes to `algorithm`, scaled into [from, to], and its AbortExecute flag
 /// aborts.
 inline asmcore::Execution SMPExecution(
-  vtkAlgorithm* algorithm, double from, double to, bool threads = true)
+  vtkAlgorithm* algorithm, double from, double to, bool threads)
 {
   asmcore::Execution execution;
   if (UseThreads(threads))
@@ -291,7 +291,7 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tup
 }
 
 /// One vertex cell per point, for n points: what ParaView renders.
-inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n, bool threads = true)
+inline vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n, bool threads)
 {
   auto offsets = NewArray<vtkIdTypeArray>(nullptr, 1, n + 1);
   auto connectivity = NewArray<vtkIdTypeArray>(nullptr, 1, n);

@@ -50,7 +50,7 @@ namespace asmvtk
 /// carried.
 int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
   const asmcore::SimplifyResult& result, bool snap, asmcore::Index numberOfPoints,
-  vtkObject* reporter, bool threads = true);
+  vtkObject* reporter, bool threads);
 
 /// Exact duplicates (points at the same position, such as the overlap of
 /// merged scans) may carry different values. A sample's representative
@@ -67,7 +67,7 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// in every array of `inPD` (a distributed run's string arrays, which are
 /// not in `inPD`, decide among them: FetchRepresentativeValues).
 void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::SimplifyResult& result, bool snap,
-  bool threads = true, std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
+  bool threads, std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
 
 /// -1, 0 or 1: the tuple of point a against that of point b in `array`,
 /// component by component, by value (NaN after every number and equal to

@@ -217,7 +217,7 @@ int vtkKeyPointError::RequestData(
   // The simplified cloud, one vertex per point, its arrays, and the errors.
   const vtkIdType n = simplified->GetNumberOfPoints();
   output->SetPoints(simplified->GetPoints());
-  output->SetVerts(asmvtk::VertexCells(n));
+  output->SetVerts(asmvtk::VertexCells(n, threads));
   vtkPointData* pd = output->GetPointData();
   pd->PassData(simplified->GetPointData());
   auto error = asmvtk::NewArray<vtkDoubleArray>("Error", 1, n);
