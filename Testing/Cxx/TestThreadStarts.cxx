@@ -8,8 +8,11 @@
 #include "FilterHelpers.h"
 
 #include "vtkASMSimplify.h"
+#include "vtkFloatArray.h"
 #include "vtkKeyPointError.h"
+#include "vtkPointData.h"
 #include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
@@ -66,9 +69,34 @@ bool StartsThreadsPerLoop(asmtest::SMPScope&)
 }
 #endif
 
+// A float sphere with a scan's usual point data (normals, RGB colour, an
+// intensity), so that the arrays' aggregation is among the loops counted.
 vtkSmartPointer<vtkPolyData> SphereCloud(std::size_t n)
 {
-  return asmtest::ToPolyData(asmtest::Sphere(n, 1.0, 11), VTK_FLOAT);
+  vtkSmartPointer<vtkPolyData> cloud = asmtest::ToPolyData(asmtest::Sphere(n, 1.0, 11), VTK_FLOAT);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(cloud->GetNumberOfPoints());
+  vtkNew<vtkUnsignedCharArray> colour;
+  colour->SetName("RGB");
+  colour->SetNumberOfComponents(3);
+  colour->SetNumberOfTuples(cloud->GetNumberOfPoints());
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  intensity->SetNumberOfTuples(cloud->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    cloud->GetPoint(i, p); // on the unit sphere: its own normal
+    normals->SetTuple(i, p);
+    colour->SetTuple3(i, i % 256, (3 * i) % 256, (7 * i) % 256);
+    intensity->SetValue(i, static_cast<float>(p[2]));
+  }
+  cloud->GetPointData()->SetNormals(normals);
+  cloud->GetPointData()->SetScalars(colour);
+  cloud->GetPointData()->AddArray(intensity);
+  return cloud;
 }
 } // namespace
 
@@ -106,6 +134,8 @@ TEST(ThreadStarts, SimplifyStartsThreadsOnlyFromTheThreshold)
       filter->SetInputData(input);
       const long starts = ThreadsStartedBy([&]() { filter->Update(); });
       EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), input->GetNumberOfPoints() / 20);
+      EXPECT_TRUE(filter->GetOutput()->GetPointData()->GetArray("Intensity")); // carried
+      EXPECT_TRUE(filter->GetOutput()->GetPointData()->GetArray("MeanCurvature"));
       return starts;
     };
     EXPECT_EQ(startsFor(small, -1), 0) << "mode " << mode << ", 20000 points, automatic";
