@@ -24,6 +24,7 @@ expected_defaults = {
     "PlaneNeighbors": 8,
     "GenerateCurvature": 1,
     "CurvatureNeighbors": 20,
+    "MinimumPointsForThreads": -1,
 }
 listed = set(kpe.ListProperties()) - {"Original", "Simplified"}
 assert listed == set(expected_defaults), "untested or missing properties: %r" % (

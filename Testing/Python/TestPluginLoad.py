@@ -57,6 +57,7 @@ expected_defaults = {
     "BoundSnappedHoles": 1,
     # Parallel (MPI) runs.
     "AlwaysDistribute": 0,
+    "MinimumPointsForThreads": -1,
 }
 # Nothing in the XML that the test does not know about.
 listed = set(asm.ListProperties()) - {"Input"}
@@ -76,6 +77,13 @@ everyday = {"Mode", "TargetMode", "OutputFraction", "NumberOfOutputPoints", "Err
 for name in listed:
     visibility = asm.GetProperty(name).SMProperty.GetPanelVisibility()
     assert visibility == ("default" if name in everyday else "advanced"), (name, visibility)
+# An advanced property reaches the VTK object (the ParaView-only wiring; the
+# plugin's class is not wrapped, so its PrintSelf tells).
+asm.MinimumPointsForThreads = 0
+printed = str(asm.GetClientSideObject())
+assert "MinimumPointsForThreads: 0 (" in printed, printed
+asm.MinimumPointsForThreads = -1
+assert "MinimumPointsForThreads: -1 (automatic" in str(asm.GetClientSideObject())
 print("properties, defaults and documentation OK")
 
 # The advanced properties in labelled sections of the panel, each in one, and
