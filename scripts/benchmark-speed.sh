@@ -6,8 +6,8 @@
 # the synthetic bumpy sphere at 100k, 1M, 4M, 14M points. The full run takes
 # a long while (the 14M cloud alone is several minutes); extra arguments go
 # to the program, e.g. --fractions 0.05 --inputs bumps:1M,bumps:4M, or --quick.
-#   bash scripts/benchmark-speed.sh --readme --markdown   # the README's table and targets (~15 min idle)
-#   bash scripts/benchmark-speed.sh --vtk91 --readme --markdown
+#   bash scripts/benchmark-speed.sh --vtk91 --readme --markdown   # the README's table and targets (~7 min idle)
+#   bash scripts/benchmark-speed.sh --readme --markdown           # the same against ParaView's VTK
 #
 # --vtk91 (first argument) builds and runs against Debian's own VTK 9.1
 # (scripts/fetch-vtk91.sh; build-vtk91-bench/): Debian's ParaView 5.11 libraries,
