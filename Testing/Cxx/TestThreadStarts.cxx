@@ -53,10 +53,10 @@ long ThreadsStartedBy(const std::function<void()>& work)
   return ThreadStarts.load() - before;
 }
 
-// STDThread with 2 threads, restored after the test; false when this VTK's
-// STDThread keeps its threads between loops (VTK >= 9.3), which the count
-// cannot see.
-bool StartsThreadsPerLoop(asmtest::SMPScope&)
+// Sets STDThread with 2 threads (call it within an asmtest::SMPScope);
+// false when this VTK's STDThread keeps its threads between loops (VTK >=
+// 9.3), which the count cannot see.
+bool StartsThreadsPerLoop()
 {
   if (!vtkSMPTools::SetBackend("STDThread"))
   {
@@ -118,7 +118,7 @@ TEST(ThreadStarts, SimplifyStartsThreadsOnlyFromTheThreshold)
 {
 #ifdef ASM_COUNTS_THREAD_STARTS
   asmtest::SMPScope restore;
-  if (!StartsThreadsPerLoop(restore))
+  if (!StartsThreadsPerLoop())
   {
     GTEST_SKIP() << "this VTK's STDThread keeps its threads: starts cannot be counted";
   }
@@ -153,7 +153,7 @@ TEST(ThreadStarts, KeyPointErrorStartsThreadsOnlyFromTheThreshold)
 {
 #ifdef ASM_COUNTS_THREAD_STARTS
   asmtest::SMPScope restore;
-  if (!StartsThreadsPerLoop(restore))
+  if (!StartsThreadsPerLoop())
   {
     GTEST_SKIP() << "this VTK's STDThread keeps its threads: starts cannot be counted";
   }
