@@ -127,15 +127,14 @@ PointArray<double> CellSizeSubsample(
       const Index begin = BlockBegin(n, blocks, k), end = BlockBegin(n, blocks, k + 1);
       mine.reserve(
         static_cast<std::size_t>(3.0 * static_cast<double>(end - begin) / stride * 1.25) + 24);
-      for (Index i = begin; i < end; ++i)
-      {
-        double p[3];
-        xyz.Get(ids[i], p);
+      ForEachPoint(xyz, ids, begin, end, [&mine, below](Index, const double p[3]) {
         if ((CoordinateHash(p) >> 32) < below)
         {
-          mine.insert(mine.end(), p, p + 3);
+          mine.push_back(p[0]); // (inline: a range insert is a call per point)
+          mine.push_back(p[1]);
+          mine.push_back(p[2]);
         }
-      }
+      });
     }
   });
   std::vector<std::size_t> start(static_cast<std::size_t>(blocks) + 1, 0);

@@ -248,6 +248,9 @@ public:
   {
     return this->Listed ? this->First[i] : this->Start + static_cast<Index>(i);
   }
+  /// The list (nullptr for a range, whose ids are RangeStart() + i).
+  const Index* ListData() const { return this->List(); }
+  Index RangeStart() const { return this->Start; }
 
 private:
   // (nullptr for the identity, which the iterator reads as a counter.)
@@ -308,6 +311,35 @@ struct Vec3Field
 };
 /// Optional input normals.
 using NormalField = Vec3Field;
+
+/// Calls f(i, p) for i in [begin, end), p the three numbers of point ids[i]:
+/// one loop per storage (floats or doubles) and kind of ids (a list or a
+/// range), so that the loop tests neither per point (for streaming passes).
+template <typename F>
+inline void ForEachPoint(Vec3Field xyz, IdView ids, Index begin, Index end, F&& f)
+{
+  auto loop = [&](auto* numbers, auto idOf) {
+    for (Index i = begin; i < end; ++i)
+    {
+      const auto* q = numbers + 3 * idOf(i);
+      const double p[3] = { static_cast<double>(q[0]), static_cast<double>(q[1]),
+        static_cast<double>(q[2]) };
+      f(i, p);
+    }
+  };
+  const Index* list = ids.ListData();
+  const Index start = ids.RangeStart();
+  auto listed = [list](Index i) { return list[i]; };
+  auto ranged = [start](Index i) { return start + i; };
+  if (xyz.Doubles)
+  {
+    list ? loop(xyz.Doubles, listed) : loop(xyz.Doubles, ranged);
+  }
+  else
+  {
+    list ? loop(xyz.Floats, listed) : loop(xyz.Floats, ranged);
+  }
+}
 /// Input coordinates, doubles or floats.
 using Coordinates = Vec3Field;
 

@@ -64,17 +64,14 @@ Bounds ComputeBounds(Coordinates xyz, IdView ids, const Execution& execution)
         pb.Min[a] = std::numeric_limits<double>::infinity();
         pb.Max[a] = -std::numeric_limits<double>::infinity();
       }
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
-      {
-        double p[3];
-        xyz.Get(ids[i], p);
-        for (int a = 0; a < 3; ++a)
-        {
-          pb.Min[a] = std::min(pb.Min[a], p[a]);
-          pb.Max[a] = std::max(pb.Max[a], p[a]);
-        }
-      }
+      ForEachPoint(xyz, ids, BlockBegin(n, blocks, k), BlockBegin(n, blocks, k + 1),
+        [&pb](Index, const double p[3]) {
+          for (int a = 0; a < 3; ++a)
+          {
+            pb.Min[a] = std::min(pb.Min[a], p[a]);
+            pb.Max[a] = std::max(pb.Max[a], p[a]);
+          }
+        });
     }
   });
   b = partial[0];
@@ -104,15 +101,12 @@ void ComputeCentroid(Coordinates xyz, IdView ids, double centroid[3], const Exec
     for (Index k = first; k < last; ++k)
     {
       double sum[3] = { 0.0, 0.0, 0.0 };
-      const Index end = BlockBegin(n, blocks, k + 1);
-      for (Index i = BlockBegin(n, blocks, k); i < end; ++i)
-      {
-        double p[3];
-        xyz.Get(ids[i], p);
-        sum[0] += p[0];
-        sum[1] += p[1];
-        sum[2] += p[2];
-      }
+      ForEachPoint(xyz, ids, BlockBegin(n, blocks, k), BlockBegin(n, blocks, k + 1),
+        [&sum](Index, const double p[3]) {
+          sum[0] += p[0];
+          sum[1] += p[1];
+          sum[2] += p[2];
+        });
       std::copy(sum, sum + 3, &partial[3 * k]);
     }
   });
@@ -275,14 +269,11 @@ CellGrid BuildCellGrid(
     std::vector<CellNumber> cell(static_cast<std::size_t>(n));
     execution.Run(0, n, [&](Index b, Index e) {
       const FastCellOf cellOf(spec);
-      for (Index i = b; i < e; ++i)
-      {
+      ForEachPoint(xyz, ids, b, e, [&](Index i, const double p[3]) {
         std::uint64_t ijk[3];
-        double p[3];
-        xyz.Get(ids[i], p);
         cellOf(p, ijk);
         cell[i] = static_cast<CellNumber>(table.Find(GridSpec::PackKey(ijk)));
-      }
+      });
     });
     SortIntoCells(ids, cell.data(), grid, execution);
   };
@@ -338,14 +329,11 @@ Index CountDistinctCells(
   std::unique_ptr<std::uint64_t[]> key(new std::uint64_t[static_cast<std::size_t>(n)]);
   execution.Run(0, n, [&](Index b, Index e) {
     const FastCellOf cellOf(spec);
-    for (Index i = b; i < e; ++i)
-    {
+    ForEachPoint(xyz, ids, b, e, [&](Index i, const double p[3]) {
       std::uint64_t ijk[3];
-      double p[3];
-      xyz.Get(ids[i], p);
       cellOf(p, ijk);
       key[i] = GridSpec::PackKey(ijk);
-    }
+    });
   });
   constexpr Index Partitions = 16;
   auto partitionOf = [](std::uint64_t k) {

@@ -82,8 +82,9 @@ struct FastCellOf
       const double x = p[a] - this->Origin[a];
       // Clamping before the floor gives the same cell as after it; then the
       // truncation is the floor (no branchy std::floor).
+      // (0 <= r < 2^21: the signed conversion is one instruction.)
       const double r = std::min(std::max(x * this->Inverse, 0.0), this->Top[a]);
-      std::uint64_t k = static_cast<std::uint64_t>(r);
+      auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(r));
       const double frac = r - static_cast<double>(k);
       if (!(frac > 1e-8 && frac < 1.0 - 1e-8))
       {
@@ -317,11 +318,8 @@ inline void MarkCells(Coordinates xyz, IdView ids, const GridSpec& spec, Occupan
     const FastCellOf cellOf(spec); // a local copy: registers, no aliasing with the stores
     const OccupancyBitmap::Numbering numbering = bitmap.GetNumbering();
     std::uint64_t last = ~std::uint64_t(0);
-    for (Index i = b; i < e; ++i)
-    {
+    ForEachPoint(xyz, ids, b, e, [&](Index i, const double p[3]) {
       std::uint64_t ijk[3];
-      double p[3];
-      xyz.Get(ids[i], p);
       cellOf(p, ijk);
       const std::uint64_t lin = ijk[0] + numbering.D0 * ijk[1] + numbering.D01 * ijk[2];
       if (linear)
@@ -333,7 +331,7 @@ inline void MarkCells(Coordinates xyz, IdView ids, const GridSpec& spec, Occupan
         bitmap.Set(lin);
         last = lin;
       }
-    }
+    });
   });
 }
 
