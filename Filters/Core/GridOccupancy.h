@@ -18,6 +18,10 @@
 #include <memory>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace asmcore
 {
 namespace occupancy
@@ -75,25 +79,56 @@ struct FastCellOf
   }
   // Kept in the object (not read through a reference) so that the compiler
   // can hold them in registers across the stores of the loop.
+  // Per axis: clamping before the floor gives the same cell as after it;
+  // then the truncation is the floor (no branchy std::floor), and
+  // 0 <= r < 2^21, so the conversions are one instruction each.
   void operator()(const double p[3], std::uint64_t ijk[3]) const
   {
+#if defined(__SSE2__)
+    // (x, y) and (z, z) at once.
+    const __m128d r01 =
+      _mm_min_pd(_mm_max_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p), _mm_loadu_pd(this->Origin)),
+                              _mm_set1_pd(this->Inverse)),
+                   _mm_setzero_pd()),
+        _mm_loadu_pd(this->Top));
+    const __m128d r22 =
+      _mm_min_pd(_mm_max_pd(_mm_mul_pd(_mm_sub_pd(_mm_set1_pd(p[2]), _mm_set1_pd(this->Origin[2])),
+                              _mm_set1_pd(this->Inverse)),
+                   _mm_setzero_pd()),
+        _mm_set1_pd(this->Top[2]));
+    const __m128i k01 = _mm_cvttpd_epi32(r01);
+    const __m128i k22 = _mm_cvttpd_epi32(r22);
+    const __m128d f01 = _mm_sub_pd(r01, _mm_cvtepi32_pd(k01));
+    const __m128d f22 = _mm_sub_pd(r22, _mm_cvtepi32_pd(k22));
+    const __m128d low = _mm_set1_pd(1e-8), high = _mm_set1_pd(1.0 - 1e-8);
+    const int in01 = _mm_movemask_pd(_mm_and_pd(_mm_cmpgt_pd(f01, low), _mm_cmplt_pd(f01, high)));
+    const int in22 = _mm_movemask_pd(_mm_and_pd(_mm_cmpgt_pd(f22, low), _mm_cmplt_pd(f22, high)));
+    const bool inside = in01 == 3 && in22 == 3; // every axis away from a cell border
+    ijk[0] = static_cast<std::uint32_t>(_mm_cvtsi128_si32(k01));
+    ijk[1] = static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(k01, 1)));
+    ijk[2] = static_cast<std::uint32_t>(_mm_cvtsi128_si32(k22));
+#else
+    bool inside = true; // every axis away from a cell border
     for (int a = 0; a < 3; ++a)
     {
-      const double x = p[a] - this->Origin[a];
-      // Clamping before the floor gives the same cell as after it; then the
-      // truncation is the floor (no branchy std::floor).
-      // (0 <= r < 2^21: the signed conversion is one instruction.)
-      const double r = std::min(std::max(x * this->Inverse, 0.0), this->Top[a]);
-      auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(r));
+      const double r =
+        std::min(std::max((p[a] - this->Origin[a]) * this->Inverse, 0.0), this->Top[a]);
+      const auto k = static_cast<std::int64_t>(r);
       const double frac = r - static_cast<double>(k);
-      if (!(frac > 1e-8 && frac < 1.0 - 1e-8))
+      inside &= (frac > 1e-8) & (frac < 1.0 - 1e-8);
+      ijk[a] = static_cast<std::uint64_t>(k);
+    }
+#endif
+    if (!inside)
+    {
+      // Near a cell border (or clamped): exactly as GridSpec::CellOf (the
+      // same cells on the other axes).
+      for (int a = 0; a < 3; ++a)
       {
-        // Near a cell border (or clamped): exactly as GridSpec::CellOf.
-        double t = std::floor(x / this->Size);
+        double t = std::floor((p[a] - this->Origin[a]) / this->Size);
         t = std::min(std::max(t, 0.0), this->Top[a]);
-        k = static_cast<std::uint64_t>(t);
+        ijk[a] = static_cast<std::uint64_t>(t);
       }
-      ijk[a] = k;
     }
   }
   double Origin[3];

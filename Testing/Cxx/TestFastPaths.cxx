@@ -123,6 +123,59 @@ TEST(FastPaths, GridKeysExactOnCellBorders)
   }
 }
 
+TEST(FastPaths, FloatCoordinatesAndEveryKindOfIdsGiveTheDefinition)
+{
+  // The streaming passes loop once per storage (floats or doubles) and kind
+  // of ids (a list, the identity, a range): each of the six gives what the
+  // definition gives on the same points as doubles, on cell borders too.
+  Cloud c = BorderCloud(0.1, 30);
+  const Cloud sphere = asmtest::Sphere(20000, 1.0, 11, 3.0, -2.0, 0.5);
+  c.insert(c.end(), sphere.begin(), sphere.end());
+  const std::vector<float> floats(c.begin(), c.end());
+  const Cloud widened(floats.begin(), floats.end());
+  const Index n = static_cast<Index>(c.size() / 3);
+  std::vector<Index> listed = AllIds(c);
+  std::shuffle(listed.begin(), listed.end(), std::mt19937_64(4));
+  listed.resize(static_cast<std::size_t>(n / 2));
+  for (const asmcore::IdView ids : { asmcore::IdView(listed), asmcore::IdView::Identity(n),
+         asmcore::IdView::Range(n / 3, static_cast<std::size_t>(n / 2)) })
+  {
+    const std::vector<Index> idList(ids.begin(), ids.end());
+    const Cloud* pair[2] = { &c, &widened };
+    for (int k = 0; k < 2; ++k)
+    {
+      const Cloud& doubles = *pair[k];
+      const asmcore::Coordinates xyz =
+        k == 0 ? asmcore::Coordinates(doubles.data()) : asmcore::Coordinates(floats.data());
+      const auto bounds = asmcore::ComputeBounds(xyz, ids, UnevenTwoThreads());
+      const auto reference = asmcore::ComputeBounds(doubles.data(), idList);
+      double centroid[3], expected[3];
+      asmcore::ComputeCentroid(xyz, ids, centroid, UnevenTwoThreads());
+      asmcore::ComputeCentroid(doubles.data(), idList, expected);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(bounds.Min[a], reference.Min[a]);
+        EXPECT_EQ(bounds.Max[a], reference.Max[a]);
+        EXPECT_EQ(centroid[a], expected[a]);
+      }
+      // 0.1: the border cells (bitmap); 1e-4: the hash table's path.
+      for (double h : { 0.1, 1e-4 })
+      {
+        const auto spec = asmcore::GridSpec::Make(reference, h);
+        const asmcore::CellGrid grid = ReferenceGrid(doubles.data(), idList, spec);
+        ExpectSameGrid(asmcore::BuildCellGrid(xyz, ids, spec, UnevenTwoThreads()), grid);
+        EXPECT_EQ(asmcore::CountOccupiedCells(xyz, ids, spec), grid.NumberOfCells());
+        // (The hash path looks up the keys it inserted: points read two ways
+        // would not find theirs.)
+        ASSERT_FALSE(HasFailure());
+      }
+      // The subsample picks the same points (a 200 000-point cloud's rate).
+      EXPECT_EQ(asmcore::CellSizeSubsample(xyz, ids, 200000.0, 400.0, UnevenTwoThreads()),
+        asmcore::CellSizeSubsample(doubles.data(), idList, 200000.0, 400.0));
+    }
+  }
+}
+
 TEST(FastPaths, GridOrdersUnsortedIdsById)
 {
   const Cloud c = asmtest::Sphere(5000, 2.0, 5);
