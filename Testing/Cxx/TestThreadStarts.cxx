@@ -21,6 +21,7 @@
 #include <thread>
 
 #if defined(__linux__) && defined(__GLIBC__)
+#include <cerrno>
 #include <dlfcn.h>
 #include <pthread.h>
 
@@ -37,7 +38,9 @@ extern "C" int pthread_create(pthread_t* thread, const pthread_attr_t* attribute
   ThreadStarts.fetch_add(1, std::memory_order_relaxed);
   using Create = int (*)(pthread_t*, const pthread_attr_t*, void* (*)(void*), void*);
   static const auto next = reinterpret_cast<Create>(dlsym(RTLD_NEXT, "pthread_create"));
-  return next(thread, attributes, start, argument);
+  // (No next definition, as in a static link: no thread, an error the
+  // caller reports, instead of a call through a null pointer.)
+  return next ? next(thread, attributes, start, argument) : EAGAIN;
 }
 #define ASM_COUNTS_THREAD_STARTS 1
 #endif
