@@ -354,8 +354,12 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
         result.RepresentativeDuplicates.end(), duplicates.begin(), duplicates.end());
     }
   };
-  // Batches between progress reports, cut by point count.
-  const int batches = 20;
+  // Batches between progress reports, cut by point count: 20 from 2 M
+  // points, one per 100 000 below. Each batch is a parallel loop of its own,
+  // and a backend that starts its threads in every loop (STDThread in VTK
+  // 9.1-9.2) pays for each; a small cloud's run is over before more reports
+  // would show.
+  const int batches = static_cast<int>(std::min<Index>(20, std::max<Index>(1, total / 100000)));
   Index cellBegin = 0;
   for (int batch = 1; batch <= batches && cellBegin < cells; ++batch)
   {
