@@ -312,6 +312,9 @@ struct Vec3Field
 /// Optional input normals.
 using NormalField = Vec3Field;
 
+/// Input coordinates, doubles or floats.
+using Coordinates = Vec3Field;
+
 /// Calls f(i, p) for i in [begin, end), p the three numbers of point ids[i]:
 /// one loop per storage (floats or doubles) and kind of ids (a list or a
 /// range), so that the loop tests neither per point (for streaming passes).
@@ -340,8 +343,6 @@ inline void ForEachPoint(Vec3Field xyz, IdView ids, Index begin, Index end, F&& 
     list ? loop(xyz.Floats, listed) : loop(xyz.Floats, ranged);
   }
 }
-/// Input coordinates, doubles or floats.
-using Coordinates = Vec3Field;
 
 /// Ids of the points whose three coordinates are finite.
 VTKASMFILTERS_EXPORT std::vector<Index> FinitePointIds(const double* xyz, Index n);

@@ -77,8 +77,6 @@ struct FastCellOf
     this->Size = spec.CellSize;
     this->Inverse = 1.0 / spec.CellSize;
   }
-  // Kept in the object (not read through a reference) so that the compiler
-  // can hold them in registers across the stores of the loop.
   // Per axis: clamping before the floor gives the same cell as after it;
   // then the truncation is the floor (no branchy std::floor), and
   // 0 <= r < 2^21, so the conversions are one instruction each.
@@ -131,6 +129,8 @@ struct FastCellOf
       }
     }
   }
+  // Kept in the object (not read through a reference) so that the compiler
+  // can hold them in registers across the stores of the loop.
   double Origin[3];
   double Top[3];
   double Size;
