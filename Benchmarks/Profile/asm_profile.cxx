@@ -5,10 +5,7 @@
  * (a sphere with bumps, points uniform by area, float coordinates) in memory,
  * or reads a PLY, and times vtkASMSimplify::Update() end to end.
  *
- *   asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]
- *               [--fraction F] [--curvature] [--ply file] [--stages] [--floor]
- *               [--dump file] [--coherent] [--mode paper|feature] [--arrays]
- *               [--set Name=value,...] [--error] [--loops] [--backend B]
+ * `asm_profile --help` prints the synopsis (in main, below); the options:
  *
  * --backend picks vtkSMPTools' backend (default STDThread; TBB or OpenMP
  * when this VTK has them, e.g. Debian's VTK 9.1: scripts/fetch-vtk91.sh).
@@ -299,8 +296,18 @@ int main(int argc, char* argv[])
       loops = true;
     else
     {
-      std::fprintf(stderr, "unknown argument %s (see the header of asm_profile.cxx)\n", a.c_str());
-      return 2;
+      const bool help = a == "--help" || a == "-h";
+      if (!help)
+      {
+        std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+      }
+      std::fprintf(help ? stdout : stderr,
+        "usage: asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]\n"
+        "                   [--fraction F] [--curvature] [--ply file] [--stages] [--floor]\n"
+        "                   [--dump file] [--coherent] [--mode paper|feature] [--arrays]\n"
+        "                   [--set Name=value,...] [--error] [--loops] [--backend B]\n"
+        "(each option is described in the header of Benchmarks/Profile/asm_profile.cxx)\n");
+      return help ? 0 : 2;
     }
   }
   // The settings are applied to every run's filter; checked here once.
