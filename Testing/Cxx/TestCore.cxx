@@ -3,7 +3,6 @@
 #include "Core/Budget.h"
 #include "Core/CanonicalOrder.h"
 #include "Core/CellFrame.h"
-#include "Core/CellSize.h"
 #include "Core/Grid.h"
 #include "Core/KeyPoints.h"
 #include "Core/Simplify.h"
@@ -240,24 +239,6 @@ TEST(Simplify, RepresentativeDuplicatesAreListed)
     std::sort(expected.begin(), expected.end());
     EXPECT_EQ(r.RepresentativeDuplicates, expected) << "mode " << int(mode);
   }
-}
-
-TEST(Grid, AutomaticCellSizeHitsTheTargetOccupancy)
-{
-  const Cloud c = asmtest::Sphere(40000, 1.0);
-  const auto ids = AllIds(c);
-  const auto bounds = asmcore::ComputeBounds(c.data(), ids);
-  for (double target : { 10.0, 100.0, 1000.0 })
-  {
-    const double h = asmcore::AutomaticCellSize(c.data(), ids, bounds, target);
-    const double count = static_cast<double>(
-      asmcore::CountOccupiedCells(c.data(), ids, asmcore::GridSpec::Make(bounds, h)));
-    EXPECT_GT(count, 0.7 * target) << "target " << target;
-    EXPECT_LT(count, 1.4 * target) << "target " << target;
-  }
-  // A single cell for a target of one.
-  const double h = asmcore::AutomaticCellSize(c.data(), ids, bounds, 1.0);
-  EXPECT_EQ(asmcore::CountOccupiedCells(c.data(), ids, asmcore::GridSpec::Make(bounds, h)), 1);
 }
 
 TEST(Grid, TinyCellSizeIsEnlargedToTheKeyRange)
@@ -549,27 +530,4 @@ TEST(Simplify, RotatingTheInputRotatesTheKeyPoints)
     }
     EXPECT_LT(best, 1e-9);
   }
-}
-
-TEST(Simplify, RandomKeySelectionFollowsTheSeed)
-{
-  // Many key clusters per cell, a budget of one: the kept key point is random.
-  const Cloud c = asmtest::Sphere(4000, 1.0, 5);
-  const auto ids = AllIds(c);
-  asmcore::SimplifyParameters p;
-  p.Mode = asmcore::SimplifyMode::Paper; // the literal pipeline's key points
-  p.NumberOfSamples = 1;
-  p.CellSize = 10.0;
-  std::set<Index> kept;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed)
-  {
-    p.RandomSeed = seed;
-    const auto r = asmcore::Simplify(c.data(), ids, nullptr, p);
-    ASSERT_EQ(r.Samples.size(), 1u);
-    EXPECT_TRUE(r.Samples[0].Key);
-    kept.insert(r.Samples[0].Representative);
-    const auto again = asmcore::Simplify(c.data(), ids, nullptr, p);
-    EXPECT_EQ(again.Samples[0].Representative, r.Samples[0].Representative);
-  }
-  EXPECT_GT(kept.size(), 1u) << "different seeds pick different key points";
 }
