@@ -8,9 +8,10 @@
  *
  * - floating-point arrays (float, double): the mean over the sample's
  *   cluster (the members that place it, asmcore::Sample::CoreSize; not the
- *   points that only joined it), component by component, ignoring NaN values (NaN only when
- *   every member is NaN); the normals attribute (3 components) is
- *   renormalised (the representative's normal when the mean is zero);
+ *   points that only joined it), component by component, ignoring NaN and
+ *   infinite values (NaN when no member has a finite value); the normals
+ *   attribute (3 components) is renormalised (the representative's normal
+ *   when the mean is zero);
  * - every other array (signed/unsigned 8- to 64-bit integers, char,
  *   vtkIdType, bit, string, variant arrays): the tuple of the sample's
  *   representative input point, the member nearest the cluster centroid

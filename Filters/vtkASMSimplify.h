@@ -29,7 +29,8 @@
  *
  * Output arrays: every input point-data array, same class, name and
  * attribute role, aggregated over each sample's cluster: float and double
- * arrays averaged (NaN values ignored, the normals attribute renormalised);
+ * arrays averaged (NaN and infinite values ignored, the normals attribute
+ * renormalised);
  * integer, id, bit, string and other categorical arrays take the value of the
  * representative point (the member nearest the centroid, see
  * "vtkOriginalPointIds"; among exact duplicates, the one whose values come

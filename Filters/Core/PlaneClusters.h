@@ -58,8 +58,8 @@ VTKASMFILTERS_EXPORT Eigen::Vector3d Representative(
   const LocalPoints& q, const Index* first, const Index* last, bool snap);
 
 /// Separate clusters of `subset` in the (u0, u1) plane: the connected
-/// components of the graph linking points closer than `linkDistance` in that
-/// plane (single linkage). Clusters are ordered by their first member in
+/// components of the graph linking points at most `linkDistance` apart in
+/// that plane (single linkage). Clusters are ordered by their first member in
 /// `subset`. linkDistance <= 0 puts every point in one cluster.
 VTKASMFILTERS_EXPORT Clusters LinkInPlane(
   const LocalPoints& q, const std::vector<Index>& subset, double linkDistance);

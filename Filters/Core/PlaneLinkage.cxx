@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The single linkage of PlaneClusters.h (LinkInPlane): the connected
-// components of points closer than a distance in a cell's plane.
+// components of points at most a distance apart in a cell's plane.
 #include "PlaneClusters.h"
 
 #include <algorithm>
@@ -296,7 +296,7 @@ Clusters LinkInPlane(const LocalPoints& q, const std::vector<Index>& subset, dou
     return out;
   }
   // Bins of side d/2: two points in one bin are closer than d, so a bin is
-  // connected; points closer than d lie at most two bins apart.
+  // connected; points at most d apart lie at most two bins apart.
   const double side = 0.5 * linkDistance;
   const double d2 = linkDistance * linkDistance;
   if (n <= SmallLinkSize)

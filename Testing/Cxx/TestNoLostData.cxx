@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -237,16 +238,19 @@ TEST(NoLostData, OriginalPointIdIsAClusterMember)
   }
 }
 
-TEST(NoLostData, FloatMeansIgnoreNaNValues)
+TEST(NoLostData, FloatMeansIgnoreNaNAndInfiniteValues)
 {
-  // A NaN attribute value (a missing reading) does not poison its cluster.
+  // A NaN or infinite attribute value (a missing reading, a sensor's "no
+  // return") does not poison its cluster.
   const Cloud c = asmtest::Sphere(2000, 1.0, 6);
   auto input = ToPolyData(c);
   vtkNew<vtkDoubleArray> reading;
   reading->SetName("Reading");
+  const double inf = std::numeric_limits<double>::infinity();
+  const double missing[3] = { std::nan(""), inf, -inf };
   for (vtkIdType i = 0; i < 2000; ++i)
   {
-    reading->InsertNextValue(i % 3 == 0 ? std::nan("") : 5.0);
+    reading->InsertNextValue(i % 3 == 0 ? missing[(i / 3) % 3] : 5.0);
   }
   input->GetPointData()->AddArray(reading);
   FilterRun run;

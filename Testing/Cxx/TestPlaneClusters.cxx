@@ -143,3 +143,27 @@ TEST(PlaneClusters, SplitInPlaneMatchesFullSorts)
     }
   }
 }
+
+TEST(PlaneClusters, PointsExactlyTheLinkDistanceApartAreLinked)
+{
+  // Square lattices whose spacing is the link distance, exactly (multiples
+  // of 0.25): one cluster each, through the pair masks of a small band (5 x
+  // 5) and through the bins of a larger one (12 x 12). Half the spacing
+  // more, and every point is a cluster of its own.
+  for (int side : { 5, 12 })
+  {
+    asmcore::LocalPoints q;
+    for (int j = 0; j < side; ++j)
+    {
+      for (int i = 0; i < side; ++i)
+      {
+        q.emplace_back(0.25 * i, 0.25 * j, 0.01 * ((i + j) % 2));
+      }
+    }
+    std::vector<Index> subset(q.size());
+    std::iota(subset.begin(), subset.end(), Index(0));
+    EXPECT_EQ(asmcore::LinkInPlane(q, subset, 0.25).Size(), 1) << side << " x " << side;
+    EXPECT_EQ(asmcore::LinkInPlane(q, subset, 0.125).Size(), static_cast<Index>(q.size()))
+      << side << " x " << side;
+  }
+}
