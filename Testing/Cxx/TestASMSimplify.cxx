@@ -18,7 +18,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkSOADataArrayTemplate.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -414,91 +413,4 @@ TEST(ASMSimplify, SurfaceVariationWeightMovesSamplesToCurvedParts)
   EXPECT_EQ(adaptive.Filter->GetOutput()->GetNumberOfPoints(),
     uniform.Filter->GetOutput()->GetNumberOfPoints());
   EXPECT_GT(onBall(adaptive.Filter), onBall(uniform.Filter) * 5 / 4);
-}
-
-TEST(ASMSimplify, InputNormalsKeepTheirNameAndOrientThePCANormals)
-{
-  auto input = ReadPLY("kitten.ply"); // nx ny nz: an array called "Normals"
-  ASSERT_NE(input->GetPointData()->GetNormals(), nullptr);
-  FilterRun run;
-  vtkPolyData* out = run.Execute(input);
-  vtkPointData* pd = out->GetPointData();
-  vtkDataArray* normals = pd->GetArray("Normals");
-  vtkDataArray* pca = pd->GetArray("PCANormals");
-  ASSERT_NE(normals, nullptr);
-  ASSERT_NE(pca, nullptr);
-  EXPECT_EQ(pd->GetNormals(), normals);
-  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-  {
-    double a[3], b[3];
-    normals->GetTuple(i, a);
-    pca->GetTuple(i, b);
-    EXPECT_GE(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 0.0) << i;
-  }
-}
-
-// The input normals orient the PCA normals the same whatever their array
-// (float or double, contiguous or not: read in place or copied), in both
-// modes; flipped input normals flip them.
-TEST(ASMSimplify, InputNormalsOrientTheSameWhateverTheirArray)
-{
-  auto input = ReadPLY("kitten.ply");
-  vtkDataArray* floats = input->GetPointData()->GetNormals();
-  ASSERT_NE(vtkFloatArray::SafeDownCast(floats), nullptr);
-  const vtkIdType n = floats->GetNumberOfTuples();
-  vtkNew<vtkDoubleArray> doubles;
-  vtkNew<vtkSOADataArrayTemplate<float>> split;
-  vtkNew<vtkFloatArray> flipped;
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(doubles), static_cast<vtkDataArray*>(split),
-         static_cast<vtkDataArray*>(flipped) })
-  {
-    a->SetName("Normals");
-    a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(n);
-  }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    double v[3];
-    floats->GetTuple(i, v);
-    doubles->SetTuple(i, v);
-    split->SetTuple(i, v);
-    flipped->SetTuple3(i, -v[0], -v[1], -v[2]);
-  }
-  for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
-  {
-    auto pcaNormals = [&](vtkDataArray* normals) {
-      vtkNew<vtkPolyData> copy;
-      copy->ShallowCopy(input);
-      copy->GetPointData()->SetNormals(normals);
-      FilterRun run;
-      run.Filter->SetMode(mode);
-      vtkPolyData* out = run.Execute(copy);
-      std::vector<double> values;
-      vtkDataArray* pca = out->GetPointData()->GetArray("PCANormals");
-      for (vtkIdType i = 0; pca && i < pca->GetNumberOfTuples(); ++i)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          values.push_back(pca->GetComponent(i, a));
-        }
-      }
-      return values;
-    };
-    const std::vector<double> reference = pcaNormals(floats);
-    ASSERT_FALSE(reference.empty());
-    EXPECT_EQ(pcaNormals(doubles), reference) << mode;
-    EXPECT_EQ(pcaNormals(split), reference) << mode;
-    const std::vector<double> inward = pcaNormals(flipped);
-    ASSERT_EQ(inward.size(), reference.size());
-    std::size_t opposite = 0;
-    for (std::size_t k = 0; k < reference.size(); k += 3)
-    {
-      opposite += reference[k] * inward[k] + reference[k + 1] * inward[k + 1] +
-            reference[k + 2] * inward[k + 2] <
-          0.0
-        ? 1
-        : 0;
-    }
-    EXPECT_EQ(opposite, reference.size() / 3) << mode;
-  }
 }

@@ -115,6 +115,42 @@ TEST(CompositeInput, MultiBlockIsOneCloud)
   }
 }
 
+TEST(CompositeInput, MixedPrecisionLeavesAreMergedInDoubles)
+{
+  // A double leaf and a float leaf, in either order: the merged cloud holds
+  // doubles (the float leaf's values exactly), so the output follows the
+  // double input, as one polydata of the same numbers does.
+  const asmtest::Cloud cloud = asmtest::Sphere(8000, 1.0, 6);
+  const asmtest::Cloud first(cloud.begin(), cloud.begin() + 3 * 4000);
+  asmtest::Cloud second(cloud.begin() + 3 * 4000, cloud.end());
+  for (double& v : second)
+  {
+    v = static_cast<float>(v); // what the float leaf holds
+  }
+  for (bool doubleFirst : { true, false })
+  {
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(2);
+    blocks->SetBlock(doubleFirst ? 0 : 1, asmtest::ToPolyData(first, VTK_DOUBLE));
+    blocks->SetBlock(doubleFirst ? 1 : 0, asmtest::ToPolyData(second, VTK_FLOAT));
+    asmtest::Cloud all = doubleFirst ? first : second;
+    const asmtest::Cloud& rest = doubleFirst ? second : first;
+    all.insert(all.end(), rest.begin(), rest.end());
+    vtkSmartPointer<vtkPolyData> whole = asmtest::ToPolyData(all, VTK_DOUBLE);
+    for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
+    {
+      vtkSmartPointer<vtkPolyData> merged = SimplifyTo(blocks, mode, 400);
+      vtkSmartPointer<vtkPolyData> plain = SimplifyTo(whole, mode, 400);
+      ASSERT_NE(merged, nullptr);
+      ASSERT_EQ(merged->GetNumberOfPoints(), 400);
+      EXPECT_EQ(merged->GetPoints()->GetDataType(), VTK_DOUBLE)
+        << "double leaf first: " << doubleFirst << ", mode " << mode;
+      EXPECT_TRUE(asmtest::SamePoints(merged, plain))
+        << "double leaf first: " << doubleFirst << ", mode " << mode;
+    }
+  }
+}
+
 TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
 {
   const asmtest::Cloud cloud = asmtest::Sphere(20000, 1.0, 9);
