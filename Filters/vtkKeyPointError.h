@@ -32,7 +32,10 @@
  * original surface, a plane fitted to its PlaneNeighbors nearest original
  * points; NaN for skipped points), and, when GenerateCurvature is on,
  * "MeanCurvature" and "NeighborhoodSurfaceVariation" estimated from the
- * original cloud; all figures as one-value arrays in its field data.
+ * original cloud (NaN for skipped points; the mean curvature positive where
+ * the surface bends away from the simplified cloud's normals, or, without
+ * normals, away from the original cloud's centroid); all figures as
+ * one-value arrays in its field data.
  * Output port 1: a one-row vtkTable of the same figures (ParaView shows it in
  * a spreadsheet view). Figure names end in "Relative" when divided by the
  * original's bounding-box diagonal (by its square for squared AKPE/MKPE).

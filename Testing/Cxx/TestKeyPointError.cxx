@@ -5,6 +5,7 @@
 #include "FilterHelpers.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkTable.h"
@@ -110,6 +111,9 @@ TEST(KeyPointError, AShiftedCloudIsAsFarAsTheShift)
   squared.Filter->SetDistanceMeasure(vtkKeyPointError::SQUARED_DISTANCE);
   squared.Execute(original, shifted);
   EXPECT_NEAR(squared.Figure("AKPE"), d * d, 1e-14);
+  // Divided by the squared diagonal (9), the same unit.
+  EXPECT_NEAR(squared.Figure("AKPERelative"), d * d / 9.0, 1e-15);
+  EXPECT_NEAR(squared.Figure("MKPERelative"), d * d / 9.0, 1e-15);
 }
 
 TEST(KeyPointError, AKPEIsTheMeanAndMKPETheLargest)
@@ -293,6 +297,10 @@ TEST(KeyPointError, BadInputs)
     ASSERT_EQ(out->GetNumberOfPoints(), 201);
     EXPECT_TRUE(std::isnan(out->GetPointData()->GetArray("Error")->GetTuple1(200)));
     EXPECT_TRUE(std::isfinite(out->GetPointData()->GetArray("Error")->GetTuple1(0)));
+    vtkDataArray* curvature = out->GetPointData()->GetArray("MeanCurvature");
+    ASSERT_NE(curvature, nullptr);
+    EXPECT_TRUE(std::isnan(curvature->GetTuple1(200)));
+    EXPECT_TRUE(std::isfinite(curvature->GetTuple1(0)));
     EXPECT_EQ(run.Figure("NumberOfSimplifiedPoints"), 200.0);
   }
 }
@@ -315,6 +323,48 @@ TEST(Curvature, ASMOutputOnASphereHasMeanCurvatureOneOverR)
   off.Filter->GenerateCurvatureOff();
   vtkPolyData* out = off.Execute(ToPolyData(Sphere(2000, 1.0)));
   EXPECT_EQ(out->GetPointData()->GetArray("MeanCurvature"), nullptr);
+}
+
+TEST(Curvature, KeyPointErrorCurvatureFollowsTheSimplifiedNormals)
+{
+  // The simplified cloud's normals sign its mean curvature: outward on a
+  // sphere of radius 2, +1/2; the same points with inward normals, -1/2;
+  // without normals, away from the original's centroid: +1/2.
+  auto sphere = ToPolyData(Sphere(20000, 2.0, 3));
+  FilterRun simplify;
+  simplify.Filter->SetOutputFraction(0.05);
+  vtkPolyData* simplified = simplify.Execute(sphere);
+  vtkDataArray* normals = simplified->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  vtkNew<vtkDoubleArray> inward;
+  inward->SetName("Normals");
+  inward->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    const double* v = normals->GetTuple3(i);
+    inward->InsertNextTuple3(-v[0], -v[1], -v[2]);
+  }
+  for (int orientation : { 1, -1, 0 })
+  {
+    vtkNew<vtkPolyData> copy;
+    copy->ShallowCopy(simplified);
+    vtkNew<vtkPointData> pd;
+    if (orientation != 0)
+    {
+      pd->SetNormals(orientation > 0 ? normals : static_cast<vtkDataArray*>(inward));
+    }
+    copy->GetPointData()->ShallowCopy(pd);
+    ErrorRun error;
+    vtkPolyData* measured = error.Execute(sphere, copy);
+    vtkDataArray* h = measured->GetPointData()->GetArray("MeanCurvature");
+    ASSERT_NE(h, nullptr);
+    const double expected = orientation < 0 ? -0.5 : 0.5;
+    EXPECT_NEAR(Median(h), expected, 0.025) << "orientation " << orientation;
+    for (vtkIdType i = 0; i < h->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_GT(h->GetTuple1(i) * expected, 0.0) << "orientation " << orientation << ", " << i;
+    }
+  }
 }
 
 TEST(Curvature, PlaneHasZeroMeanCurvatureInBothFilters)
