@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 using asmcore::Index;
 using asmtest::AllIds;
@@ -40,9 +41,9 @@ TEST(CellSize, FarOutliersDoNotTakeTheSurfacesCells)
   // A sphere of 20 000 points and 150 outliers, each alone in its cell,
   // scattered in the box around it. Counted plainly, the outliers' cells
   // would be more than a third of a 400-cell target and the sphere would get
-  // about 250 cells. They make up a fifth of the count, so each cell counts
-  // by its share of the points a sample needs (about 6 here), and the
-  // sphere gets nearly the whole target.
+  // about 250 cells. They make up more than a fifth of the count, so each
+  // cell counts by its share of the points a sample needs (about 6 here),
+  // and the sphere gets nearly the whole target.
   const Index spherePoints = 20000;
   Cloud c = asmtest::Sphere(spherePoints, 1.0, 8);
   std::mt19937_64 rng(11);
