@@ -366,3 +366,41 @@ TEST(DistributedFilter, StructureOfArraysGivesTheSameOutput)
     }
   }
 }
+
+// From 200 000 points the grid's size is searched twice: first on a
+// subsample picked by coordinates (CellSizeSubsample), then on every point,
+// starting from the first search's answer. The distributed path searches
+// the same way, so it sizes the grid as the serial path does, and its output
+// is the serial path's (up to the order of the sums within a cell).
+TEST(DistributedFilter, LargeCloudsGetTheSerialGrid)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(250000, 1.0, 8);
+  vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(cloud);
+  for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
+  {
+    vtkNew<vtkASMSimplify> serial;
+    serial->SetMode(mode);
+    serial->SetTargetModeToNumberOfOutputPoints();
+    serial->SetNumberOfOutputPoints(2500);
+    serial->SetInputData(input);
+    serial->Update();
+    vtkSmartPointer<vtkPolyData> distributed = SimplifyTo(input, mode, 2500);
+    const double size = asmtest::FieldValue(serial->GetOutput(), "CellSize");
+    ASSERT_GT(size, 0.0) << "mode " << mode;
+    EXPECT_NEAR(asmtest::FieldValue(distributed, "CellSize"), size, 1e-12 * size)
+      << "mode " << mode;
+    const auto a = SortedRows(serial->GetOutput(), "ClusterSize");
+    const auto b = SortedRows(distributed, "ClusterSize");
+    ASSERT_EQ(a.size(), 2500u) << "mode " << mode;
+    ASSERT_EQ(b.size(), a.size()) << "mode " << mode;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        worst = std::max(worst, std::abs(a[i][c] - b[i][c]));
+      }
+    }
+    EXPECT_LE(worst, 1e-9) << "mode " << mode; // (the cloud's diagonal is 3.5)
+  }
+}

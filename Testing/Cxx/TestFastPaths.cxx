@@ -123,6 +123,42 @@ TEST(FastPaths, GridKeysExactOnCellBorders)
   }
 }
 
+TEST(FastPaths, BoundsAndCentroidOfALargeCloudAreThoseOfEveryPoint)
+{
+  // From 65 536 points the bounds and the centroid are taken in blocks of
+  // points (on threads or not), then combined: the result is that of one
+  // plain pass over every point (the centroid up to the order of its sums).
+  const Cloud c = asmtest::Sphere(200000, 1.0, 12, 10.0, -3.0, 0.5);
+  const auto ids = AllIds(c);
+  double lo[3], hi[3], mean[3] = { 0, 0, 0 };
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = hi[a] = c[a];
+  }
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], c[i + a]);
+      hi[a] = std::max(hi[a], c[i + a]);
+      mean[a] += c[i + a];
+    }
+  }
+  for (const asmcore::Execution& execution : { asmcore::Execution(), UnevenTwoThreads() })
+  {
+    const asmcore::Bounds bounds = asmcore::ComputeBounds(c.data(), ids, execution);
+    double centroid[3];
+    asmcore::ComputeCentroid(c.data(), ids, centroid, execution);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(bounds.Min[a], lo[a]);
+      EXPECT_EQ(bounds.Max[a], hi[a]);
+      const double expected = mean[a] / static_cast<double>(ids.size());
+      EXPECT_NEAR(centroid[a], expected, 1e-12 * (1.0 + std::abs(expected)));
+    }
+  }
+}
+
 TEST(FastPaths, FloatCoordinatesAndEveryKindOfIdsGiveTheDefinition)
 {
   // The streaming passes loop once per storage (floats or doubles) and kind

@@ -1,6 +1,6 @@
 """MPI test, run under `mpiexec -n 3 pvbatch --mpi --symmetric`: a cloud of
-12 points (the bunny's first ones), all on process 0, simplified to N_s = 4
-in both modes. The grid has too few non-empty cells for three processes'
+12 points (the bunny's first ones), all on process 0, then all on process 2,
+simplified to N_s = 4 in both modes. The grid has too few non-empty cells for three processes'
 boxes, so some processes own no point and receive none: they must still take part in
 every collective of the run (the feature mode's final Lloyd iterations sum
 a mean over the processes, and its hole filling gathers rankings and removal
@@ -11,7 +11,10 @@ processes, none of them on a process without points, and with process 0's
 numeric and string arrays on every output (before 2026-11-27 a process
 without points voted every array out). The feature mode runs
 twice: as by default (N_s = 4 makes no hole-filling move), and with Hole
-Fill Fraction 0.5 (two moves a round).
+Fill Fraction 0.5 (two moves a round). With the points on process 2,
+process 0 (which apportions the global budget) and process 1 have none: the
+budget is N_s of the whole cloud, and the arrays are those of the first
+process that has points.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -35,49 +38,58 @@ reader = vtkPLYReader()
 reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
 reader.Update()
 xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[:12]
-mine = xyz if rank == 0 else xyz[:0]
-points = vtkPoints()
-points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
-piece = vtkPolyData()
-piece.SetPoints(points)
-# A string array on process 0 alone (the others have no points): read at the
-# samples' representatives after the run, in two more exchanges, which the
-# processes without points serve too; every output has the array.
-names = vtkStringArray()
-names.SetName("Point name")
-for i in range(len(mine)):
-    names.InsertNextValue("point %d" % i)
-piece.GetPointData().AddArray(names)
-# And a numeric array, which travels with the points (a process without
-# points has no arrays: it must not vote an array of the others out).
-value = numpy_to_vtk(np.ascontiguousarray(mine[:, 0]), deep=1)
-value.SetName("Value")
-piece.GetPointData().AddArray(value)
 
-for mode, fraction in ((vtkASMSimplify.FEATURE_PRESERVING, None),
-                       (vtkASMSimplify.FEATURE_PRESERVING, 0.5), (vtkASMSimplify.PAPER, None)):
-    asm = vtkASMSimplify()
-    asm.SetInputData(piece)
-    asm.SetMode(mode)
-    if fraction is not None:
-        asm.SetHoleFillFraction(fraction)
-    asm.SetTargetModeToNumberOfOutputPoints()
-    asm.SetNumberOfOutputPoints(NS)
-    if mode == vtkASMSimplify.FEATURE_PRESERVING:
-        assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
-    asm.Update()
-    counts = vtkDoubleArray()
-    local = asm.GetOutput().GetNumberOfPoints()
-    controller.AllGatherV(numpy_to_vtk(np.array([local], dtype=np.float64), deep=1), counts)
-    counts = vtk_to_numpy(counts)
-    assert counts.sum() == NS, (mode, counts)
-    assert (counts == 0).any(), ("some process must be left without points", mode, counts)
-    out_names = asm.GetOutput().GetPointData().GetAbstractArray("Point name")
-    assert out_names is not None and out_names.GetNumberOfValues() == local, (mode, rank)
-    out_value = asm.GetOutput().GetPointData().GetArray("Value")
-    assert out_value is not None and out_value.GetNumberOfTuples() == local, (mode, rank)
-    if local:
-        ids = vtk_to_numpy(asm.GetOutput().GetPointData().GetArray("vtkOriginalPointIds"))
-        assert [out_names.GetValue(i) for i in range(local)] == ["point %d" % i for i in ids]
-    if rank == 0:
-        print("mode %d: output points per process %s" % (mode, counts.astype(int).tolist()))
+
+def run(holder):
+    """The whole cloud on process `holder`, the others without points."""
+    mine = xyz if rank == holder else xyz[:0]
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
+    piece = vtkPolyData()
+    piece.SetPoints(points)
+    # A string array on the holder alone (the others have no points): read at
+    # the samples' representatives after the run, in two more exchanges, which
+    # the processes without points serve too; every output has the array.
+    names = vtkStringArray()
+    names.SetName("Point name")
+    for i in range(len(mine)):
+        names.InsertNextValue("point %d" % i)
+    piece.GetPointData().AddArray(names)
+    # And a numeric array, which travels with the points (a process without
+    # points has no arrays: it must not vote an array of the others out).
+    value = numpy_to_vtk(np.ascontiguousarray(mine[:, 0]), deep=1)
+    value.SetName("Value")
+    piece.GetPointData().AddArray(value)
+
+    for mode, fraction in ((vtkASMSimplify.FEATURE_PRESERVING, None),
+                           (vtkASMSimplify.FEATURE_PRESERVING, 0.5), (vtkASMSimplify.PAPER, None)):
+        asm = vtkASMSimplify()
+        asm.SetInputData(piece)
+        asm.SetMode(mode)
+        if fraction is not None:
+            asm.SetHoleFillFraction(fraction)
+        asm.SetTargetModeToNumberOfOutputPoints()
+        asm.SetNumberOfOutputPoints(NS)
+        if mode == vtkASMSimplify.FEATURE_PRESERVING:
+            assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
+        asm.Update()
+        counts = vtkDoubleArray()
+        local = asm.GetOutput().GetNumberOfPoints()
+        controller.AllGatherV(numpy_to_vtk(np.array([local], dtype=np.float64), deep=1), counts)
+        counts = vtk_to_numpy(counts)
+        assert counts.sum() == NS, (mode, counts)
+        assert (counts == 0).any(), ("some process must be left without points", mode, counts)
+        out_names = asm.GetOutput().GetPointData().GetAbstractArray("Point name")
+        assert out_names is not None and out_names.GetNumberOfValues() == local, (mode, rank)
+        out_value = asm.GetOutput().GetPointData().GetArray("Value")
+        assert out_value is not None and out_value.GetNumberOfTuples() == local, (mode, rank)
+        if local:
+            ids = vtk_to_numpy(asm.GetOutput().GetPointData().GetArray("vtkOriginalPointIds"))
+            assert [out_names.GetValue(i) for i in range(local)] == ["point %d" % i for i in ids]
+        if rank == 0:
+            print("points on process %d, mode %d: output points per process %s"
+                  % (holder, mode, counts.astype(int).tolist()))
+
+
+run(0)
+run(size - 1)

@@ -4,7 +4,8 @@ interleaved way (every grid cell is split; each process holds its points in
 reverse order), simplified to exactly N_s points with the wrapped
 vtkASMSimplify (started by mpiexec, so K = 1 takes the distributed path
 too, without AlwaysDistribute), then
-measured by vtkKeyPointError. Process 0 gathers the output and writes
+measured by vtkKeyPointError. Every process must report the same global
+figures (MKPE, AKPE, counts, cell size). Process 0 gathers the output and writes
 sorted coordinates, arrays and figures to the .npz file given as argument;
 CheckMPIOutputs.py compares the files of K = 1, 2, 3, 4 (with 3 and 4
 processes the grid is cut across two axes: boxes of cells, not slabs).
@@ -205,6 +206,15 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
              "MeanDistanceSimplifiedToOriginal", "PointToPlaneMean", "NumberOfOriginalKeyPoints",
              "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
+# Every process reports the same global figures: each is reduced over the
+# processes (MKPE the largest error, AKPE the mean over every key point, the
+# counts summed), not taken of this process's share.
+every = vtkDoubleArray()
+mine_figures = numpy_to_vtk(np.array(list(figures.values()), dtype=np.float64), deep=1)
+controller.AllGatherV(mine_figures, every)
+every = vtk_to_numpy(every).reshape(size, len(figures))
+spread = np.abs(every - every[0]).max(0) / np.maximum(1.0, np.abs(every[0]))
+assert np.all(spread <= 1e-12), dict(zip(figures, every.T.tolist()))
 # The path taken: the distributed one names the process of each sample's
 # representative point.
 assert (pd.GetArray("vtkOriginalProcessIds") is None) == SERIAL
