@@ -10,26 +10,16 @@ not passed on. "Value" is the active scalars, and stays so on the output. Both m
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
-import os
-
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOPLY import vtkPLYReader
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
+from asm_mpi_setup import controller_and_bunny
 from asmvtk import vtkASMSimplify
 
 NS = 300
-controller = vtkMultiProcessController.GetGlobalController()
-rank, size = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-assert size == 3, size
-data_dir = os.environ.get("ASM_DATA_DIR", os.path.join(os.path.dirname(__file__), "..", "Data"))
-reader = vtkPLYReader()
-reader.SetFileName(os.path.join(data_dir, "bunny.ply"))
-reader.Update()
-xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[:3000]
+controller, rank, size, xyz = controller_and_bunny(3, 3000)
 ids = np.arange(rank, len(xyz), size)
 mine = xyz[ids]
 
