@@ -111,8 +111,8 @@
  * serial path gives the same points too, and the same point-data arrays in
  * the same order (string, variant and bit arrays are read at the
  * representatives after the run). An array that some process
- * with points lacks or has with fewer tuples than points is dropped with a
- * warning.
+ * with points lacks, has with another type or number of components, or
+ * with fewer tuples than points is dropped with a warning.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
