@@ -6,16 +6,17 @@ that every process holding points has, with the same type and components
 (strings) are on every process and reach every output; "Partial" is missing
 on process 1, and "Shape" has 2 components on processes 0 and 2 but 3 on
 process 1, so neither is on any output, and every process warns that it is
-not passed on. "Value" is the active scalars, and stays so on the output. Both modes, N_s = 300 over the processes.
+not passed on. "Value" is the active scalars, and stays so on the output.
+Both modes, N_s = 300 over the processes.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
+from vtkmodules.vtkCommonCore import vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 
-from asm_mpi_setup import controller_and_bunny
+from asm_mpi_setup import controller_and_bunny, gathered
 from asmvtk import vtkASMSimplify
 
 NS = 300
@@ -58,9 +59,8 @@ for mode in (vtkASMSimplify.PAPER, vtkASMSimplify.FEATURE_PRESERVING):
     asm.Update()
     out = asm.GetOutput()
     local = out.GetNumberOfPoints()
-    counts = vtkDoubleArray()
-    controller.AllGatherV(numpy_to_vtk(np.array([local], dtype=np.float64), deep=1), counts)
-    assert vtk_to_numpy(counts).sum() == NS, (mode, vtk_to_numpy(counts))
+    counts = gathered(controller, [local])
+    assert counts.sum() == NS, (mode, counts)
     opd = out.GetPointData()
     for name in ("Partial", "Shape"):
         assert opd.GetAbstractArray(name) is None, (mode, rank, name)

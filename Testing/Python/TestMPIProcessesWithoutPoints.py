@@ -1,29 +1,29 @@
-"""MPI test, run under `mpiexec -n 3 pvbatch --mpi --symmetric`: a cloud of
-12 points (the bunny's first ones), all on process 0, then all on process 2,
-simplified to N_s = 4 in both modes. The grid has too few non-empty cells for three processes'
-boxes, so some processes own no point and receive none: they must still take part in
-every collective of the run (the feature mode's final Lloyd iterations sum
-a mean over the processes, and its hole filling gathers rankings and removal
-costs as many times as its data asks: a process without points serves
-those collectives with nothing until every process is done), so the run
-ends (no hang: the test's timeout) with exactly N_s points over the
-processes, none of them on a process without points, and with process 0's
-numeric and string arrays on every output (before 2026-11-27 a process
-without points voted every array out). The feature mode runs
-twice: as by default (N_s = 4 makes no hole-filling move), and with Hole
-Fill Fraction 0.5 (two moves a round). With the points on process 2,
-process 0 (which apportions the global budget) and process 1 have none: the
-budget is N_s of the whole cloud, and the arrays are those of the first
-process that has points.
+"""MPI test, run under `mpiexec -n 3 pvbatch --mpi --symmetric`: a cloud of 12
+points (the bunny's first ones), all on process 0, then all on process 2,
+simplified to N_s = 4 in both modes. The grid has too few non-empty cells
+for three processes' boxes, so some processes own no point and receive none:
+they must still take part in every collective of the run (the feature mode's
+final Lloyd iterations sum a mean over the processes, and its hole filling
+gathers rankings and removal costs as many times as its data asks: a process
+without points serves those collectives with nothing until every process is
+done), so the run ends (no hang: the test's timeout) with exactly N_s points
+over the processes, none of them on a process without points, and with the
+holder's numeric and string arrays on every output (before 2026-11-27 a
+process without points voted every array out). The feature mode runs twice:
+as by default (N_s = 4 makes no hole-filling move), and with Hole Fill
+Fraction 0.5 (two moves a round). With the points on process 2, process 0
+(which apportions the global budget) and process 1 have none: the budget is
+N_s of the whole cloud, and the arrays are those of the first process that
+has points.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints, vtkStringArray
+from vtkmodules.vtkCommonCore import vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 
-from asm_mpi_setup import controller_and_bunny
+from asm_mpi_setup import controller_and_bunny, gathered
 from asmvtk import vtkASMSimplify
 
 NS = 4
@@ -63,10 +63,8 @@ def run(holder):
         if mode == vtkASMSimplify.FEATURE_PRESERVING:
             assert asm.GetFinalLloydIterations() > 0 and asm.GetLloydVariationWeight() > 0
         asm.Update()
-        counts = vtkDoubleArray()
         local = asm.GetOutput().GetNumberOfPoints()
-        controller.AllGatherV(numpy_to_vtk(np.array([local], dtype=np.float64), deep=1), counts)
-        counts = vtk_to_numpy(counts)
+        counts = gathered(controller, [local])
         assert counts.sum() == NS, (mode, counts)
         assert (counts == 0).any(), ("some process must be left without points", mode, counts)
         out_names = asm.GetOutput().GetPointData().GetAbstractArray("Point name")

@@ -1,12 +1,13 @@
 """Shared set-up of the pvbatch MPI tests that run a fixed number of
-processes on the first points of the bunny.
+processes on the first points of the bunny, and the gather they use.
 
 Environment: ASM_DATA_DIR (Testing/Data).
 """
 import os
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkDoubleArray
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
@@ -25,3 +26,10 @@ def controller_and_bunny(processes, count):
     reader.Update()
     xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[:count]
     return controller, rank, size, xyz
+
+
+def gathered(controller, values):
+    """Every process's `values` (numbers), in process order, on every process."""
+    received = vtkDoubleArray()
+    controller.AllGatherV(numpy_to_vtk(np.asarray(values, dtype=np.float64), deep=1), received)
+    return vtk_to_numpy(received)
