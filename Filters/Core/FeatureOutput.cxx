@@ -12,6 +12,52 @@ namespace asmcore
 {
 namespace feature
 {
+void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
+  const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
+  std::vector<Index>& count)
+{
+  for (Index s = 0; s < samples.Size(); ++s)
+  {
+    if (count[s] > 0)
+    {
+      continue;
+    }
+    const double* p = samples.Position.data() + 3 * s;
+    const CellRef* ring = neighbors.Of(info[s].Owner);
+    Index best = -1;
+    double bestD = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 27; ++k)
+    {
+      const Index nb = ring[k];
+      for (Index i = nb < 0 ? 0 : grid.CellStart[nb]; nb >= 0 && i < grid.CellStart[nb + 1]; ++i)
+      {
+        if (assign[i] >= 0 && count[assign[i]] < 2)
+        {
+          continue;
+        }
+        double x[3];
+        xyz.Get(grid.PointAt(i), x);
+        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
+          (x[2] - p[2]) * (x[2] - p[2]);
+        if (d < bestD)
+        {
+          bestD = d;
+          best = i;
+        }
+      }
+    }
+    if (best >= 0)
+    {
+      if (assign[best] >= 0)
+      {
+        --count[assign[best]];
+      }
+      assign[best] = static_cast<SampleId>(s);
+      ++count[s];
+    }
+  }
+}
+
 void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf,
   const std::vector<Index>& memberStart, const SimplifyParameters& parameters, SampleSet& samples,
   std::vector<SampleInfo>& info, PointArray<Index>& members,

@@ -3,12 +3,14 @@
  * The output of the feature-preserving mode (FeatureSimplify.h, phase 6),
  * in two steps: with the cell-ordered copy of the points, each sample's
  * final position and representative (PlaceOutputSamples); after the copy is
- * released, the samples with their normals (LayOutSamples). Private to
- * SimplifyFeaturePreserving.
+ * released, the samples with their normals (LayOutSamples). Before them,
+ * the clusters' last repair (FillEmptyClusters). Private to
+ * SimplifyFeaturePreserving (declared here for its tests).
  */
 #ifndef asm_core_FeatureOutput_h
 #define asm_core_FeatureOutput_h
 
+#include "CellNeighbors.h"
 #include "Grid.h"
 #include "Lloyd.h"
 #include "Simplify.h"
@@ -36,6 +38,16 @@ struct VTKASMFILTERS_EXPORT CellSurface
   Eigen::Vector3d Centroid;
   double SurfaceVariation;
 };
+
+/// The clusters' last repair, before the output: every sample left without
+/// members (count[s] == 0) takes the point nearest it, among the points of
+/// its owner cell's ring (neighbors) that are unassigned or whose cluster
+/// has two or more members, so that no cluster is emptied in turn; samples
+/// in index order, `assign` (by slot) and `count` updated. A sample whose
+/// ring has no such point stays empty.
+VTKASMFILTERS_EXPORT void FillEmptyClusters(Coordinates xyz, const CellGrid& grid,
+  const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<SampleInfo>& info,
+  PointArray<SampleId>& assign, std::vector<Index>& count);
 
 /// Output, step 1. P: the points in slot order (the cell-ordered copy);
 /// members: each sample's members as slots, grouped by sample

@@ -24,6 +24,7 @@
 namespace asmcore
 {
 using feature::CellSurface;
+using feature::FillEmptyClusters;
 using feature::KeepOutputCells;
 using feature::LayOutSamples;
 using feature::PlaceOutputSamples;
@@ -31,54 +32,6 @@ using feature::SampleInfo;
 
 namespace
 {
-// Every sample gets at least one member when its ring has a point to spare:
-// the nearest point of a cluster with two or more members moves to it.
-void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
-  const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
-  std::vector<Index>& count)
-{
-  for (Index s = 0; s < samples.Size(); ++s)
-  {
-    if (count[s] > 0)
-    {
-      continue;
-    }
-    const double* p = samples.Position.data() + 3 * s;
-    const CellRef* ring = neighbors.Of(info[s].Owner);
-    Index best = -1;
-    double bestD = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 27; ++k)
-    {
-      const Index nb = ring[k];
-      for (Index i = nb < 0 ? 0 : grid.CellStart[nb]; nb >= 0 && i < grid.CellStart[nb + 1]; ++i)
-      {
-        if (assign[i] >= 0 && count[assign[i]] < 2)
-        {
-          continue;
-        }
-        double x[3];
-        xyz.Get(grid.PointAt(i), x);
-        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-          (x[2] - p[2]) * (x[2] - p[2]);
-        if (d < bestD)
-        {
-          bestD = d;
-          best = i;
-        }
-      }
-    }
-    if (best >= 0)
-    {
-      if (assign[best] >= 0)
-      {
-        --count[assign[best]];
-      }
-      assign[best] = static_cast<SampleId>(s);
-      ++count[s];
-    }
-  }
-}
-
 // Points that no sample within the searched cell rings took (sparse clouds
 // with fewer samples than cells) join the nearest sample anywhere, so that
 // the clusters stay a partition of the points.

@@ -6,6 +6,7 @@
 #include "TestHelpers.h"
 
 #include "vtkASMSimplify.h"
+#include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -67,6 +68,30 @@ inline ::testing::AssertionResult SamePoints(vtkPointSet* a, vtkPointSet* b)
       {
         return ::testing::AssertionFailure() << "point " << i << " differs";
       }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// One vertex cell per point, cell i holding point i alone (what ParaView
+/// renders), and no other cells.
+inline ::testing::AssertionResult OneVertexPerPoint(vtkPolyData* out)
+{
+  const vtkIdType n = out->GetNumberOfPoints();
+  if (out->GetNumberOfVerts() != n || out->GetNumberOfCells() != n)
+  {
+    return ::testing::AssertionFailure() << out->GetNumberOfVerts() << " vertices, "
+                                         << out->GetNumberOfCells() << " cells, " << n << " points";
+  }
+  vtkCellArray* verts = out->GetVerts();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    vtkIdType size = 0;
+    const vtkIdType* points = nullptr;
+    verts->GetCellAtId(i, size, points);
+    if (size != 1 || points[0] != i)
+    {
+      return ::testing::AssertionFailure() << "vertex " << i << " holds " << size << " points";
     }
   }
   return ::testing::AssertionSuccess();

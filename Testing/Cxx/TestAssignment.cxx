@@ -10,6 +10,7 @@
 #include "Core/Assignment.h"
 #include "Core/CellNeighbors.h"
 #include "Core/Covering.h"
+#include "Core/FeatureOutput.h"
 #include "Core/Grid.h"
 #include "Core/Lloyd.h"
 
@@ -197,5 +198,52 @@ TEST(Covering, ARoundKeepsTheMemberItSitsOnWhenNoCandidateCoversBetter)
     {
       EXPECT_LT(after, before - 0.1);
     }
+  }
+}
+
+// The clusters' last repair: an empty sample takes the nearest point of its
+// ring that is unassigned or whose cluster has two or more members (never
+// the last member of another cluster); with none left, it stays empty.
+TEST(FillEmptyClusters, TakesOnlyPointsThatLeaveNoClusterEmpty)
+{
+  // Points on the x axis; cells of 2: p0, p1, p2, p4 in one cell, p3 in a
+  // cell outside its ring.
+  Cloud c;
+  for (double x : { 0.0, 1.0, 1.1, 9.0, 1.5 })
+  {
+    asmtest::Add(c, x, 0.0, 0.0);
+  }
+  const auto ids = asmtest::AllIds(c);
+  const asmcore::CellGrid grid = asmcore::BuildCellGrid(
+    c.data(), ids, asmcore::GridSpec::Make(asmcore::ComputeBounds(c.data(), ids), 2.0));
+  ASSERT_EQ(grid.NumberOfCells(), 2);
+  const asmcore::CellNeighborTable neighbors = asmcore::BuildCellNeighbors(grid);
+  // Samples 0-4 owned by the first cell, 5 by the second.
+  asmcore::SampleSet samples;
+  samples.Position = { 0.0, 0, 0, 1.05, 0, 0, -0.2, 0, 0, 0.5, 0, 0, 0.2, 0, 0, 9.0, 0, 0 };
+  samples.Fixed.assign(6, 0);
+  samples.Start = { 0, 5, 6 };
+  std::vector<asmcore::feature::SampleInfo> info(6);
+  for (Index s = 0; s < 6; ++s)
+  {
+    info[s].Owner = s < 5 ? 0 : 1;
+  }
+  // p0 -> 0, p1 and p2 -> 1, p3 -> 5, p4 unassigned; assign is by slot.
+  const std::vector<asmcore::SampleId> byPoint = { 0, 1, 1, 5, -1 };
+  asmcore::PointArray<asmcore::SampleId> assign(5);
+  for (Index i = 0; i < 5; ++i)
+  {
+    assign[i] = byPoint[grid.PointAt(i)];
+  }
+  std::vector<Index> count = { 1, 2, 0, 0, 0, 1 };
+  asmcore::feature::FillEmptyClusters(c.data(), grid, neighbors, samples, info, assign, count);
+  // Sample 2 (at -0.2) takes p1, not p0 (nearer, but sample 0's only
+  // member); sample 3 (at 0.5) then takes the unassigned p4, as every
+  // cluster around has one member; sample 4 finds nothing to take.
+  EXPECT_EQ(count, (std::vector<Index>{ 1, 1, 1, 1, 0, 1 }));
+  const std::vector<asmcore::SampleId> expected = { 0, 2, 1, 5, 3 };
+  for (Index i = 0; i < 5; ++i)
+  {
+    EXPECT_EQ(assign[i], expected[grid.PointAt(i)]) << "point " << grid.PointAt(i);
   }
 }

@@ -489,6 +489,45 @@ TEST(Simplify, ErrorToleranceBoundsMKPE)
   EXPECT_LT(bounded.AKPE, loose.AKPE);
 }
 
+// The key point figures are over the key samples only: AKPE is the mean of
+// their errors, MKPE the largest, and each error is the distance from the
+// key sample to the extreme point it stands for, a member of its cluster.
+TEST(Simplify, KeyPointFiguresAreOverTheKeySamplesOnly)
+{
+  const Cloud c = asmtest::Sphere(30000, 1.0, 11);
+  const auto ids = AllIds(c);
+  asmcore::SimplifyParameters p;
+  p.Mode = asmcore::SimplifyMode::Paper; // key samples are key clusters' centroids: errors > 0
+  p.NumberOfSamples = 1500;
+  const auto r = asmcore::Simplify(c.data(), ids, nullptr, p);
+  Index keys = 0;
+  double sum = 0.0, largest = 0.0;
+  for (const auto& s : r.Samples)
+  {
+    if (!s.Key)
+    {
+      continue;
+    }
+    ++keys;
+    sum += s.KeyError;
+    largest = std::max(largest, s.KeyError);
+    double farthest = 0.0;
+    for (Index m = 0; m < s.ClusterSize; ++m)
+    {
+      const double* x = &c[3 * r.Members[s.MemberBegin + m]];
+      farthest = std::max(
+        farthest, std::hypot(x[0] - s.Position[0], x[1] - s.Position[1], x[2] - s.Position[2]));
+    }
+    EXPECT_LE(s.KeyError, farthest + 1e-12);
+  }
+  ASSERT_GT(keys, 0);
+  ASSERT_LT(keys, 1500) << "the figures must not count the other samples";
+  ASSERT_GT(sum, 0.0);
+  EXPECT_EQ(r.NumberOfKeyPoints, keys);
+  EXPECT_NEAR(r.AKPE, sum / static_cast<double>(keys), 1e-15);
+  EXPECT_EQ(r.MKPE, largest);
+}
+
 TEST(Simplify, RotatingTheInputRotatesTheKeyPoints)
 {
   // 40 x 40: no grid point lies exactly on a band threshold, where rounding

@@ -7,6 +7,7 @@
 #include "Core/CellNeighbors.h"
 #include "Core/CellSize.h"
 #include "Core/Grid.h"
+#include "Core/GroupBy.h"
 #include "Core/Simplify.h"
 
 #include "TestHelpers.h"
@@ -395,5 +396,40 @@ TEST(FastPaths, CellNeighborsAreTheDefinition)
         ASSERT_EQ(table.Of(cell)[k], expected) << "h " << h << " cell " << cell << " entry " << k;
       }
     }
+  }
+}
+
+// GroupBy (the grid's and the members' counting sort) with several blocks:
+// each group holds its items' values in increasing item order, whatever
+// the thread count; items of negative key are left out.
+TEST(FastPaths, GroupByIsAStableCountingSortOverBlocks)
+{
+  const Index n = 300000, keys = 5000; // 4 blocks of 75 000 items
+  auto key = [](Index i) -> Index {
+    std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL;
+    h ^= h >> 29;
+    return h % 11 == 0 ? -1 : static_cast<Index>((h >> 7) % 5000);
+  };
+  auto value = [](Index i) { return 3 * i + 1; };
+  std::vector<std::vector<Index>> expected(static_cast<std::size_t>(keys));
+  for (Index i = 0; i < n; ++i)
+  {
+    if (key(i) >= 0)
+    {
+      expected[key(i)].push_back(value(i));
+    }
+  }
+  for (const asmcore::Execution& execution : { asmcore::Execution(), UnevenTwoThreads() })
+  {
+    std::vector<Index> start, out;
+    asmcore::GroupBy(n, keys, key, value, start, out, execution);
+    ASSERT_EQ(start.size(), static_cast<std::size_t>(keys) + 1);
+    ASSERT_EQ(start[0], 0);
+    for (Index k = 0; k < keys; ++k)
+    {
+      ASSERT_EQ(std::vector<Index>(out.begin() + start[k], out.begin() + start[k + 1]), expected[k])
+        << "group " << k;
+    }
+    EXPECT_EQ(static_cast<std::size_t>(start[keys]), out.size());
   }
 }

@@ -119,6 +119,32 @@ TEST(HostileInputs, NaNAndInfinitePointsAreSkippedWarnedAndCounted)
   EXPECT_EQ(FieldValue(error.Filter->GetOutput(), "HausdorffDistance"), 0.0);
 }
 
+// One bad point alone (the first, one inside, the last; in x, y or z) is
+// skipped too: the finite points are then all but one, not all.
+TEST(HostileInputs, ASingleNonFinitePointIsSkipped)
+{
+  const Cloud sphere = asmtest::Sphere(3000, 1.0, 11);
+  for (const int at : { 0, 1500, 2999 })
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      Cloud c = sphere;
+      c[3 * at + axis] = std::nan("");
+      FilterRun run;
+      run.Count(300);
+      vtkPolyData* out = run.Execute(ToPolyData(c, VTK_FLOAT));
+      ASSERT_EQ(out->GetNumberOfPoints(), 300) << at << " " << axis;
+      ExpectAllFinite(out);
+      EXPECT_EQ(FieldValue(out, "NumberOfSkippedPoints"), 1.0) << at << " " << axis;
+      auto* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
+      for (vtkIdType i = 0; i < 300; ++i)
+      {
+        EXPECT_NE(static_cast<int>(ids->GetTuple1(i)), at) << "the skipped point represents none";
+      }
+    }
+  }
+}
+
 TEST(HostileInputs, HalfOfThePointsExactDuplicates)
 {
   // Every point scanned twice (merged scans): 50 % exact duplicates.
