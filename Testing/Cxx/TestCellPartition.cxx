@@ -99,6 +99,31 @@ TEST(CellPartition, TwoProcessesCutTheLongestAxis)
   EXPECT_GE(axes.size(), 2u);
 }
 
+// A cut across a shorter side is taken only when it comes nearer the half
+// by more than 1 % of the box's points: a bar of 101 x 2 cells, one point
+// in each, is cut across x (half a layer off the half: 0.5 %), not across
+// y (exactly in half).
+TEST(CellPartition, AShorterSidesCutMustBeNearerByOnePercent)
+{
+  asmtest::Cloud bar;
+  for (int i = 0; i <= 100; ++i)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      asmtest::Add(bar, i + 0.5, j + 0.5, 0.5);
+    }
+  }
+  const asmcore::GridSpec grid = GridOf(bar, 1.0);
+  ASSERT_EQ(grid.Dims[0], 101);
+  ASSERT_EQ(grid.Dims[1], 2);
+  const asmcore::CellPartition partition =
+    asmcore::MakeCellPartition(grid, 2, bar.data(), asmtest::AllIds(bar));
+  ASSERT_EQ(partition.Nodes.size(), 3u);
+  EXPECT_EQ(partition.Nodes[0].Axis, 0);
+  const std::vector<Index> count = PointsPerOwner(partition, bar, 2);
+  EXPECT_EQ(std::abs(count[0] - count[1]), 2); // (one layer of two points apart)
+}
+
 TEST(CellPartition, OwnersNearACellAreTheOwnersOfItsRings)
 {
   const asmtest::Cloud cloud = UnevenCloud();

@@ -281,3 +281,121 @@ TEST(HoleFilling, BatchedRemovalCostsGiveTheSerialMoves)
   asmcore::AssignToSamples(c.data(), grid, neighbors, serial, assign, {});
   EXPECT_LT(largestHole(serial), 0.7 * holeBefore);
 }
+
+// One round hole in an even sampling (a plane): the gaps are the points
+// farthest from every sample, one per gap, a point counting as a gap of its
+// own when no gap taken before lies within its own distance to the samples.
+// So a hole wider than the sampling's spacing gets several samples (its
+// centre, then its outer ring), and no two gaps are within the smaller one's
+// distance of each other.
+TEST(HoleFilling, AWideHoleGetsSeveralSamplesEachAtAGapOfItsOwn)
+{
+  Cloud c; // 41 x 41 points, 0.05 apart
+  for (int i = 0; i <= 40; ++i)
+  {
+    for (int j = 0; j <= 40; ++j)
+    {
+      asmtest::Add(c, 0.05 * i, 0.05 * j, 0.0);
+    }
+  }
+  const asmtest::GriddedCloud gridded = asmtest::Gridded(c, 0.5);
+  const asmcore::CellGrid& grid = gridded.Grid;
+  // Samples 0.1 apart, none within 0.35 of the centre (1, 1).
+  const double centre[3] = { 1.0, 1.0, 0.0 }, radius = 0.35;
+  std::vector<std::vector<double>> byCell(static_cast<std::size_t>(grid.NumberOfCells()));
+  std::vector<double> before;
+  for (int i = 0; i <= 20; ++i)
+  {
+    for (int j = 0; j <= 20; ++j)
+    {
+      const double p[3] = { 0.1 * i, 0.1 * j, 0.0 };
+      if (std::hypot(p[0] - centre[0], p[1] - centre[1]) < radius)
+      {
+        continue;
+      }
+      const auto key = grid.Spec.KeyOf(p);
+      const auto cell =
+        std::lower_bound(grid.CellKey.begin(), grid.CellKey.end(), key) - grid.CellKey.begin();
+      byCell[cell].insert(byCell[cell].end(), p, p + 3);
+      before.insert(before.end(), p, p + 3);
+    }
+  }
+  asmcore::SampleSet samples;
+  samples.Start.assign(1, 0);
+  for (const std::vector<double>& cell : byCell)
+  {
+    samples.Position.insert(samples.Position.end(), cell.begin(), cell.end());
+    samples.Start.push_back(samples.Start.back() + static_cast<Index>(cell.size() / 3));
+  }
+  samples.Fixed.assign(static_cast<std::size_t>(samples.Start.back()), 0);
+  asmcore::PointArray<asmcore::SampleId> assign;
+  asmcore::AssignToSamples(c.data(), grid, gridded.Neighbors, samples, assign, {});
+  // The distance of a position to the samples before any move.
+  auto gapOf = [&](const double* p) {
+    double best = 1e300;
+    for (std::size_t k = 0; k < before.size(); k += 3)
+    {
+      best = std::min(best, std::hypot(p[0] - before[k], p[1] - before[k + 1]));
+    }
+    return best;
+  };
+  std::vector<Index> order;
+  std::vector<char> moved;
+  const Index moves =
+    asmcore::FillHoles(c.data(), grid, gridded.Neighbors, assign, 12, samples, order, moved, {});
+  ASSERT_GT(moves, 0);
+  std::vector<const double*> gaps;
+  Index inHole = 0;
+  for (Index s = 0; s < samples.Size(); ++s)
+  {
+    if (moved[s])
+    {
+      const double* p = samples.Position.data() + 3 * s;
+      gaps.push_back(p);
+      inHole += std::hypot(p[0] - centre[0], p[1] - centre[1]) < radius ? 1 : 0;
+    }
+  }
+  EXPECT_GE(inHole, 3) << moves << " moves";
+  for (std::size_t a = 0; a < gaps.size(); ++a)
+  {
+    for (std::size_t b = a + 1; b < gaps.size(); ++b)
+    {
+      const double apart = std::hypot(gaps[a][0] - gaps[b][0], gaps[a][1] - gaps[b][1]);
+      EXPECT_GT(apart, std::min(gapOf(gaps[a]), gapOf(gaps[b])))
+        << "(" << gaps[a][0] << ", " << gaps[a][1] << ") and (" << gaps[b][0] << ", " << gaps[b][1]
+        << ")";
+    }
+  }
+}
+
+// RingKeys (the distributed hole filling's ring, by cell keys) lists the 27
+// cells around a cell in the order of the neighbour table's rings (dx
+// fastest): a candidate's member cells are bits of that order.
+TEST(HoleFilling, RingKeysAreTheNeighbourTablesRing)
+{
+  const Cloud c = asmtest::Sphere(5000, 1.0, 3);
+  for (double h : { 0.2, 0.7 })
+  {
+    const asmtest::GriddedCloud gridded = asmtest::Gridded(c, h);
+    const asmcore::CellGrid& grid = gridded.Grid;
+    for (Index cell = 0; cell < grid.NumberOfCells(); ++cell)
+    {
+      std::uint64_t keys[27];
+      asmcore::holes::RingKeys(grid.Spec, grid.CellKey[cell], keys);
+      const asmcore::CellRef* ring = gridded.Neighbors.Of(cell);
+      EXPECT_EQ(keys[13], grid.CellKey[cell]);
+      for (int r = 0; r < 27; ++r)
+      {
+        if (ring[r] >= 0)
+        {
+          EXPECT_EQ(keys[r], grid.CellKey[ring[r]]) << "cell " << cell << ", entry " << r;
+        }
+        else
+        {
+          EXPECT_FALSE(std::binary_search(grid.CellKey.begin(), grid.CellKey.end(), keys[r]))
+            << "cell " << cell << ", entry " << r << ": an occupied cell";
+        }
+      }
+    }
+  }
+}
