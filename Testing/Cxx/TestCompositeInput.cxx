@@ -65,20 +65,31 @@ vtkSmartPointer<vtkPolyData> SimplifyTo(
 TEST(CompositeInput, MultiBlockIsOneCloud)
 {
   // Two overlapping halves of one sphere, an empty block, an image (not a
-  // point set: left out), and a block whose extra array the others lack.
+  // point set: left out), and a block whose extra array the others lack
+  // (its other arrays in another order); the composite's field data.
   const asmtest::Cloud cloud = asmtest::Sphere(30000, 1.0, 5);
   vtkNew<vtkMultiBlockDataSet> blocks;
   blocks->SetNumberOfBlocks(5);
   blocks->SetBlock(0, Block(cloud, 0, 12000));
-  blocks->SetBlock(1, vtkSmartPointer<vtkPolyData>::New());
+  vtkNew<vtkPolyData> empty; // (a points object without points, and no arrays)
+  empty->SetPoints(vtkNew<vtkPoints>());
+  blocks->SetBlock(1, empty);
   blocks->SetBlock(2, vtkSmartPointer<vtkImageData>::New());
   vtkSmartPointer<vtkPolyData> last = Block(cloud, 12000, 30000);
+  // Its arrays listed in the other order ("Label" first).
+  vtkSmartPointer<vtkDataArray> value = last->GetPointData()->GetArray("Value");
+  last->GetPointData()->RemoveArray("Value");
+  last->GetPointData()->AddArray(value);
   vtkNew<vtkDoubleArray> extra;
   extra->SetName("OnlyInOneBlock");
   extra->SetNumberOfTuples(18000);
   extra->Fill(1.0);
   last->GetPointData()->AddArray(extra);
   blocks->SetBlock(3, last);
+  vtkNew<vtkIntArray> scanner; // the composite's own field data
+  scanner->SetName("ScannerId");
+  scanner->InsertNextValue(42);
+  blocks->GetFieldData()->AddArray(scanner);
   // The same points in one polydata, in traversal order.
   vtkSmartPointer<vtkPolyData> whole = Block(cloud, 0, 30000);
   const unsigned lastFlatIndex = 4; // (flat indices: the root 0, block k k + 1)
@@ -99,6 +110,8 @@ TEST(CompositeInput, MultiBlockIsOneCloud)
     vtkDataArray* id = merged->GetPointData()->GetArray("vtkOriginalPointIds");
     ASSERT_TRUE(value && label && block && id) << "mode " << mode;
     EXPECT_EQ(merged->GetPointData()->GetArray("vtkASMLeafPointIds"), nullptr);
+    ASSERT_NE(merged->GetFieldData()->GetArray("ScannerId"), nullptr) << "mode " << mode;
+    EXPECT_EQ(merged->GetFieldData()->GetArray("ScannerId")->GetTuple1(0), 42.0);
     ASSERT_TRUE(asmtest::SamePoints(merged, plain)) << "mode " << mode;
     vtkDataArray* plainValue = plain->GetPointData()->GetArray("Value");
     for (vtkIdType s = 0; s < 700; ++s)

@@ -267,6 +267,39 @@ TEST(CellFrame, PlaneNormalAndOrderedEigenvalues)
   EXPECT_NEAR(frame.Axes.determinant(), 1.0, 1e-12);
 }
 
+// The axes' signs are fixed: v0's and v1's largest components positive, so
+// both solvers give the same frame, whatever the cloud's orientation.
+TEST(CellFrame, AxesSignsAreFixed)
+{
+  const Cloud flat = asmtest::GridSurface(15, 1.0, [](double x, double y) { return 0.1 * x * y; });
+  for (int turn = 0; turn < 8; ++turn)
+  {
+    const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.9 * turn, Eigen::Vector3d(1, -2, 0.5 + turn).normalized())
+        .toRotationMatrix();
+    Cloud c;
+    for (std::size_t i = 0; i < flat.size(); i += 3)
+    {
+      // (stretched along x: distinct eigenvalues)
+      const Eigen::Vector3d r = rotation * Eigen::Vector3d(2.0 * flat[i], flat[i + 1], flat[i + 2]);
+      asmtest::Add(c, r[0], r[1], r[2]);
+    }
+    const auto ids = AllIds(c);
+    const asmcore::CellFrame a = asmcore::ComputeCellFrame(c.data(), ids);
+    const asmcore::CellFrame b =
+      asmcore::ComputeCellFrame(c.data(), ids, asmcore::FrameSolver::ClosedForm);
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      const Eigen::Vector3d v = a.Axes.col(axis);
+      Eigen::Index k = 0;
+      v.cwiseAbs().maxCoeff(&k);
+      EXPECT_GT(v[k], 0.0) << "turn " << turn << ", axis " << axis;
+      EXPECT_LT((v - b.Axes.col(axis)).norm(), 1e-9) << "turn " << turn << ", axis " << axis;
+    }
+    EXPECT_NEAR(a.Axes.determinant(), 1.0, 1e-12);
+  }
+}
+
 TEST(CellFrame, DegenerateSetsGiveAValidFrame)
 {
   for (const Cloud& c : { Cloud{ 1, 2, 3 }, Cloud{ 1, 2, 3, 1, 2, 3, 1, 2, 3 },

@@ -450,3 +450,26 @@ TEST(CurvatureBenchmark, DISABLED_MillionPointSphere)
     EXPECT_NEAR(1.0, mean, 0.01);
   }
 }
+
+// Six neighbours determine the quadric (six unknowns): a fit, not the
+// plane; five are too few.
+TEST(Curvature, SixNeighboursAreEnoughForTheQuadric)
+{
+  // The centre and a pentagon of radius 1 on the bowl z = (x^2 + y^2) / 2
+  // (no conic passes through all six: the design has full rank).
+  Cloud bowl;
+  asmtest::Add(bowl, 0.0, 0.0, 0.0);
+  for (int k = 0; k < 5; ++k)
+  {
+    const double angle = 0.4 * 3.141592653589793 * k;
+    asmtest::Add(bowl, std::cos(angle), std::sin(angle), 0.5);
+  }
+  const std::vector<Index> ids = AllIds(bowl);
+  const double p[3] = { 0, 0, 0 }, down[3] = { 0, 0, -1 };
+  const CurvatureEstimate six = asmcore::EstimateCurvatureAt(bowl.data(), ids.data(), 6, p, down);
+  EXPECT_TRUE(six.QuadricFit);
+  EXPECT_NEAR(six.MeanCurvature, 1.0, 1e-9);
+  const CurvatureEstimate five = asmcore::EstimateCurvatureAt(bowl.data(), ids.data(), 5, p, down);
+  EXPECT_FALSE(five.QuadricFit);
+  EXPECT_EQ(five.MeanCurvature, 0.0);
+}

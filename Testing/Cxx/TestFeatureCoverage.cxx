@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numeric>
@@ -264,6 +265,21 @@ TEST(FeatureCoverage, CoveringRoundsShrinkTheLargestHole)
     }));
   };
   EXPECT_EQ(centroids(0), centroids(2));
+  // The key samples stay on their extreme points.
+  auto keys = [](const asmcore::SimplifyResult& r) {
+    std::vector<std::array<double, 3>> at;
+    for (const auto& s : r.Samples)
+    {
+      if (s.Key)
+      {
+        at.push_back({ s.Position[0], s.Position[1], s.Position[2] });
+      }
+    }
+    std::sort(at.begin(), at.end());
+    return at;
+  };
+  ASSERT_FALSE(keys(none).empty());
+  EXPECT_EQ(keys(two), keys(none));
 }
 
 TEST(FeatureCoverage, BudgetFollowsTheSurfaceVariation)

@@ -5,6 +5,7 @@
 
 #include "vtkASMFilterUtilities.h"
 #include "vtkASMSimplify.h"
+#include "vtkASMSimplifySteps.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -412,4 +413,92 @@ TEST(FilterContracts, SequentialLoopsRunInPieces)
   EXPECT_EQ(piecesOf(0, 3), (Pieces{ { 0, 1 }, { 1, 2 }, { 2, 3 } }));
   EXPECT_EQ(piecesOf(7, 14), (Pieces{ { 7, 8 }, { 8, 10 }, { 10, 12 }, { 12, 14 } }));
   EXPECT_TRUE(piecesOf(5, 5).empty());
+}
+
+// Every property of vtkASMSimplify that the core reads reaches it as set:
+// each switch turned on alone turns on its own parameter only, and each
+// value away from its default arrives as set (a property read from the
+// wrong getter, or not passed on, shows).
+TEST(FilterContracts, EveryPropertyReachesTheCore)
+{
+  struct Switch
+  {
+    void (vtkASMSimplify::*Set)(bool);
+    bool asmcore::SimplifyParameters::*Field;
+  };
+  using P = asmcore::SimplifyParameters;
+  const Switch switches[] = { { &vtkASMSimplify::SetValidateKeyPoints, &P::ValidateKeyPoints },
+    { &vtkASMSimplify::SetInPlaneKeyPoints, &P::InPlaneKeyPoints },
+    { &vtkASMSimplify::SetExtremeKeyPoints, &P::ExtremeKeyPoints },
+    { &vtkASMSimplify::SetCoverEveryCell, &P::CoverEveryCell },
+    { &vtkASMSimplify::SetInputPointSamples, &P::InputPointSamples },
+    { &vtkASMSimplify::SetFillHoles, &P::FillHoles },
+    { &vtkASMSimplify::SetReserveFreeSample, &P::ReserveFreeSample },
+    { &vtkASMSimplify::SetSparseCellKeyPoints, &P::SparseCellKeyPoints },
+    { &vtkASMSimplify::SetBoundSnappedHoles, &P::BoundSnappedHoles },
+    { &vtkASMSimplify::SetSnapToInputPoints, &P::Snap } };
+  vtkNew<vtkASMSimplify> f;
+  for (const Switch& on : switches)
+  {
+    for (const Switch& s : switches)
+    {
+      (f.GetPointer()->*s.Set)(&s == &on);
+    }
+    const P p = asmvtk::CoreParameters(f, 123);
+    for (const Switch& s : switches)
+    {
+      EXPECT_EQ(p.*s.Field, &s == &on)
+        << "switch " << (&on - switches) << ", parameter " << (&s - switches);
+    }
+  }
+  for (int mode : { vtkASMSimplify::PAPER, vtkASMSimplify::FEATURE_PRESERVING })
+  {
+    f->SetMode(mode);
+    f->SetWeightMode(mode == vtkASMSimplify::PAPER ? vtkASMSimplify::UNIFORM_WEIGHT
+                                                   : vtkASMSimplify::SURFACE_VARIATION_WEIGHT);
+    f->SetCellSize(0.125);
+    f->SetSamplesPerCell(3.5);
+    f->SetCurvatureWeight(2.5);
+    f->SetBudgetExponent(0.25);
+    f->SetFeatureSamplesPerCell(1.75);
+    f->SetVariationBudget(0.3);
+    f->SetVariationCap(5.5);
+    f->SetAlpha(0.2);
+    f->SetErrorTolerance(0.01);
+    f->SetRandomSeed(77);
+    f->SetKeyPointRadius(0.45);
+    f->SetKeyPointProminence(0.15);
+    f->SetLloydIterations(7);
+    f->SetCrossCellIterations(3);
+    f->SetHoleFillFraction(0.2);
+    f->SetFinalLloydIterations(5);
+    f->SetLloydVariationWeight(1.25);
+    f->SetCoveringRounds(3);
+    const P p = asmvtk::CoreParameters(f, 123);
+    EXPECT_EQ(p.Mode,
+      mode == vtkASMSimplify::PAPER ? asmcore::SimplifyMode::Paper
+                                    : asmcore::SimplifyMode::FeaturePreserving);
+    EXPECT_EQ(p.Weight,
+      mode == vtkASMSimplify::PAPER ? asmcore::WeightMode::Uniform
+                                    : asmcore::WeightMode::SurfaceVariation);
+    EXPECT_EQ(p.NumberOfSamples, 123);
+    EXPECT_EQ(p.CellSize, 0.125);
+    EXPECT_EQ(p.SamplesPerCell, 3.5);
+    EXPECT_EQ(p.CurvatureWeight, 2.5);
+    EXPECT_EQ(p.BudgetExponent, 0.25);
+    EXPECT_EQ(p.FeatureSamplesPerCell, 1.75);
+    EXPECT_EQ(p.VariationBudget, 0.3);
+    EXPECT_EQ(p.VariationCap, 5.5);
+    EXPECT_EQ(p.Alpha, 0.2);
+    EXPECT_EQ(p.ErrorTolerance, 0.01);
+    EXPECT_EQ(p.RandomSeed, 77u);
+    EXPECT_EQ(p.KeyPointRadius, 0.45);
+    EXPECT_EQ(p.KeyPointProminence, 0.15);
+    EXPECT_EQ(p.LloydIterations, 7);
+    EXPECT_EQ(p.CrossCellIterations, 3);
+    EXPECT_EQ(p.HoleFillFraction, 0.2);
+    EXPECT_EQ(p.FinalLloydIterations, 5);
+    EXPECT_EQ(p.LloydVariationWeight, 1.25);
+    EXPECT_EQ(p.CoveringRounds, 3);
+  }
 }

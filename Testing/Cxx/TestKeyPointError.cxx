@@ -114,6 +114,10 @@ TEST(KeyPointError, AShiftedCloudIsAsFarAsTheShift)
   // Divided by the squared diagonal (9), the same unit.
   EXPECT_NEAR(squared.Figure("AKPERelative"), d * d / 9.0, 1e-15);
   EXPECT_NEAR(squared.Figure("MKPERelative"), d * d / 9.0, 1e-15);
+  // The Hausdorff distance is a distance in both: divided by the diagonal.
+  EXPECT_EQ(squared.Figure("HausdorffDistance"), run.Figure("HausdorffDistance"));
+  EXPECT_NEAR(
+    squared.Figure("HausdorffDistanceRelative"), run.Figure("HausdorffDistance") / 3.0, 1e-15);
 }
 
 TEST(KeyPointError, AKPEIsTheMeanAndMKPETheLargest)
@@ -289,18 +293,24 @@ TEST(KeyPointError, BadInputs)
     EXPECT_GT(run.Figure("MeanDistanceSimplifiedToOriginal"), 97.0);
   }
   {
-    ErrorRun run; // NaN points: skipped, their error is NaN
-    Cloud c = Sphere(200, 1.0, 5);
+    ErrorRun run; // NaN points (the first and the last): skipped, their error is NaN
+    Cloud c;
+    Add(c, 0, std::nan(""), 0);
+    const Cloud s = Sphere(200, 1.0, 5);
+    c.insert(c.end(), s.begin(), s.end());
     Add(c, std::nan(""), 0, 0);
     vtkPolyData* out = run.Execute(sphere, ToPolyData(c));
     EXPECT_EQ(run.Messages->Warnings, 1);
-    ASSERT_EQ(out->GetNumberOfPoints(), 201);
-    EXPECT_TRUE(std::isnan(out->GetPointData()->GetArray("Error")->GetTuple1(200)));
-    EXPECT_TRUE(std::isfinite(out->GetPointData()->GetArray("Error")->GetTuple1(0)));
+    ASSERT_EQ(out->GetNumberOfPoints(), 202);
+    vtkDataArray* error = out->GetPointData()->GetArray("Error");
     vtkDataArray* curvature = out->GetPointData()->GetArray("MeanCurvature");
     ASSERT_NE(curvature, nullptr);
-    EXPECT_TRUE(std::isnan(curvature->GetTuple1(200)));
-    EXPECT_TRUE(std::isfinite(curvature->GetTuple1(0)));
+    for (vtkIdType i = 0; i < 202; ++i)
+    {
+      const bool skipped = i == 0 || i == 201;
+      EXPECT_EQ(std::isnan(error->GetTuple1(i)), skipped) << i;
+      EXPECT_EQ(std::isnan(curvature->GetTuple1(i)), skipped) << i;
+    }
     EXPECT_EQ(run.Figure("NumberOfSimplifiedPoints"), 200.0);
   }
 }
@@ -318,11 +328,14 @@ TEST(Curvature, ASMOutputOnASphereHasMeanCurvatureOneOverR)
     EXPECT_EQ(out->GetPointData()->GetScalars(), h);
     ASSERT_NE(out->GetPointData()->GetArray("NeighborhoodSurfaceVariation"), nullptr);
   }
-  // Off: no curvature arrays.
+  // Off: no curvature arrays; the sample's cell's surface variation is the
+  // active scalars instead.
   FilterRun off;
   off.Filter->GenerateCurvatureOff();
   vtkPolyData* out = off.Execute(ToPolyData(Sphere(2000, 1.0)));
   EXPECT_EQ(out->GetPointData()->GetArray("MeanCurvature"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetScalars(), nullptr);
+  EXPECT_STREQ(out->GetPointData()->GetScalars()->GetName(), "SurfaceVariation");
 }
 
 TEST(Curvature, KeyPointErrorCurvatureFollowsTheSimplifiedNormals)

@@ -343,6 +343,43 @@ TEST(NoLostData, ExactDuplicatesGiveTheValuesThatComeFirst)
       }
     }
   }
+  // Copies with the same values: the first copy (the lower id) represents.
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    for (bool snap : { false, true })
+    {
+      FilterRun run;
+      run.Count(200);
+      run.Filter->SetMode(mode);
+      run.Filter->SetSnapToInputPoints(snap);
+      vtkPolyData* out = run.Execute(makeInput({ "a", 1.0 }, { "a", 1.0 }));
+      vtkDataArray* ids = out->GetPointData()->GetArray("vtkOriginalPointIds");
+      ASSERT_NE(ids, nullptr);
+      for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+      {
+        ASSERT_LT(ids->GetTuple1(i), n) << "sample " << i << ", mode " << mode;
+      }
+    }
+  }
+  // Snapped, with floating-point arrays only (none taken from the
+  // representative otherwise): the values decide too, NaN after 1.0.
+  for (bool swapped : { false, true })
+  {
+    vtkSmartPointer<vtkPolyData> input = swapped ? makeInput({ "a", 1.0 }, { "a", std::nan("") })
+                                                 : makeInput({ "a", std::nan("") }, { "a", 1.0 });
+    input->GetPointData()->RemoveArray("Tie");
+    input->GetPointData()->RemoveArray("Name");
+    FilterRun run;
+    run.Count(200);
+    run.Filter->SetSnapToInputPoints(true);
+    vtkPolyData* out = run.Execute(input);
+    vtkDataArray* pairs = out->GetPointData()->GetArray("Pair");
+    ASSERT_NE(pairs, nullptr);
+    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+    {
+      ASSERT_EQ(pairs->GetComponent(i, 1), 1.0) << "sample " << i << (swapped ? ", swapped" : "");
+    }
+  }
 }
 
 TEST(NoLostData, FieldDataIsCarriedAndOurFiguresAdded)
@@ -420,4 +457,105 @@ TEST(NoLostData, KeyPointErrorCarriesTheSimplifiedCloudsArrays)
   }
   ASSERT_NE(out->GetFieldData()->GetArray("Tag"), nullptr);
   EXPECT_GE(FieldValue(out, "MKPE"), 0.0);
+}
+
+// Every attribute role of the input is kept on its array (texture
+// coordinates, tensors, global and pedigree ids too, not only the scalars,
+// vectors and normals), in both modes.
+TEST(NoLostData, EveryAttributeRoleIsKept)
+{
+  auto input = ToPolyData(asmtest::Sphere(3000, 1.0, 7));
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkPointData* pd = input->GetPointData();
+  auto tuples = [n](vtkDataArray* a, const char* name, int components) {
+    a->SetName(name);
+    a->SetNumberOfComponents(components);
+    a->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        a->SetComponent(i, c, static_cast<double>(i % 50 + c));
+      }
+    }
+  };
+  vtkNew<vtkFloatArray> scalars, vectors, tcoords;
+  vtkNew<vtkDoubleArray> tensors;
+  vtkNew<vtkIdTypeArray> globalIds, pedigreeIds;
+  tuples(scalars, "S", 1);
+  tuples(vectors, "V", 3);
+  tuples(tcoords, "T", 2);
+  tuples(tensors, "Tensor", 9);
+  tuples(globalIds, "G", 1);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    globalIds->SetValue(i, i); // (global ids are unique)
+  }
+  tuples(pedigreeIds, "P", 1);
+  pd->SetScalars(scalars);
+  pd->SetVectors(vectors);
+  pd->SetTCoords(tcoords);
+  pd->SetTensors(tensors);
+  pd->SetGlobalIds(globalIds);
+  pd->SetPedigreeIds(pedigreeIds);
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    FilterRun run;
+    run.Count(200);
+    run.Filter->SetMode(mode);
+    vtkPointData* out = run.Execute(input)->GetPointData();
+    for (int role = 0; role < vtkDataSetAttributes::NUM_ATTRIBUTES; ++role)
+    {
+      vtkAbstractArray* in = pd->GetAbstractAttribute(role);
+      if (!in || role == vtkDataSetAttributes::NORMALS)
+      {
+        continue;
+      }
+      vtkAbstractArray* o = out->GetAbstractAttribute(role);
+      ASSERT_NE(o, nullptr) << vtkDataSetAttributes::GetAttributeTypeAsString(role) << ", mode "
+                            << mode;
+      EXPECT_STREQ(o->GetName(), in->GetName()) << mode;
+      EXPECT_EQ(o->GetNumberOfTuples(), 200) << mode;
+    }
+  }
+}
+
+// A point given twice, once with z = +0 and once with z = -0, is one point
+// given twice (the two compare equal): the values decide between the copies
+// ("a" before "b"), whichever copy the grid meets first.
+TEST(NoLostData, SignedZeroCopiesAreExactDuplicates)
+{
+  Cloud plane;
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (int i = 0; i < 60; ++i)
+    {
+      for (int j = 0; j < 60; ++j)
+      {
+        asmtest::Add(plane, i / 59.0, j / 59.0, copy == 0 ? 0.0 : -0.0);
+      }
+    }
+  }
+  auto input = ToPolyData(plane);
+  vtkNew<vtkStringArray> names;
+  names->SetName("Name");
+  for (vtkIdType i = 0; i < 7200; ++i)
+  {
+    names->InsertNextValue(i < 3600 ? "b" : "a");
+  }
+  input->GetPointData()->AddArray(names);
+  for (int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    FilterRun run;
+    run.Count(200);
+    run.Filter->SetMode(mode);
+    run.Filter->SetSnapToInputPoints(true);
+    vtkPolyData* out = run.Execute(input);
+    auto* outNames = vtkStringArray::SafeDownCast(out->GetPointData()->GetAbstractArray("Name"));
+    ASSERT_NE(outNames, nullptr);
+    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+    {
+      ASSERT_EQ(outNames->GetValue(i), "a") << "sample " << i << ", mode " << mode;
+    }
+  }
 }
