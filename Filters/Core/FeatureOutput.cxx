@@ -37,8 +37,7 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
         }
         double x[3];
         xyz.Get(grid.PointAt(i), x);
-        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-          (x[2] - p[2]) * (x[2] - p[2]);
+        const double d = SquaredDistance(x, p);
         if (d < bestD)
         {
           bestD = d;
@@ -86,8 +85,7 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
         {
           mean[a] += x[a];
         }
-        const double d = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) +
-          (x[2] - p[2]) * (x[2] - p[2]);
+        const double d = SquaredDistance(x, p);
         // Ties, rounding included (a two-point cluster's centre is as near
         // to both): the first position, whatever the order of the points.
         // (Duplicates: the lower id.)
