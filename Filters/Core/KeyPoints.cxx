@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace asmcore
@@ -56,6 +57,32 @@ void PartitionAndCluster(const LocalPoints& q, double alpha, double maxV2, doubl
     }
     result.Extreme[k] = best;
   }
+}
+
+// The v2 extent below which a cell is flat: what rounding alone can give an
+// exactly planar cell.
+// - The input coordinates: rounding moves a point by at most sqrt(3)/2 ulp
+//   <= 0.87 eps |p| along the normal, so the extent stays below 1.75 eps |p|,
+//   |p| <= |centroid| + 4 sqrt(lambda0): 2 eps |p| leaves georeferenced float
+//   clouds (1 m rounding at 1e7 m) their key points.
+// - The PCA (in double): its normal is off by ~eps (lambda0 / lambda0) towards
+//   v0 and ~eps (lambda0 / lambda1) towards v1, which tilts points
+//   sqrt(lambda0) and sqrt(lambda1) away: an extent of about
+//   eps (sqrt(lambda0) + lambda0 / sqrt(lambda1)). Measured on tilted planar
+//   lattices and random planar cells (sizes 1e-3..1e4, aspect ratios 1..1000,
+//   about the origin, where the first term vanishes): at most 15 times that;
+//   64 times leaves a margin. A line-like cell (lambda1 = 0) is flat.
+double FlatTolerance(const CellFrame& frame, double coordinateEpsilon)
+{
+  const double coordinates = 2.0 * coordinateEpsilon *
+    (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
+  if (!(frame.Lambda[1] > 0.0))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double pca = 64.0 * std::numeric_limits<double>::epsilon() *
+    (std::sqrt(frame.Lambda[0]) + frame.Lambda[0] / std::sqrt(frame.Lambda[1]));
+  return coordinates + pca;
 }
 } // namespace
 
@@ -126,13 +153,7 @@ KeyClusters FindCellKeyClusters(
   options.Alpha = rule.Alpha;
   options.ErrorTolerance = rule.ErrorTolerance;
   options.LinkDistance = PlaneLinkDistance(q, rule.LinkFactor);
-  // Rounding of the input coordinates (relative to their magnitude) and of
-  // the PCA must not make a flat cell look curved. Rounding moves a point by
-  // at most sqrt(3)/2 ulp <= 0.87 eps |p| along the normal, so a flat cell's
-  // extent stays below 1.75 eps |p|: 2 eps |p| leaves georeferenced float
-  // clouds (1 m rounding at 1e7 m) their key points.
-  options.FlatTolerance = 2.0 * rule.CoordinateEpsilon *
-    (frame.Centroid.cwiseAbs().maxCoeff() + 4.0 * std::sqrt(frame.Lambda[0]));
+  options.FlatTolerance = FlatTolerance(frame, rule.CoordinateEpsilon);
   options.Snap = rule.Snap;
   return FindKeyClusters(q, options);
 }

@@ -65,8 +65,8 @@ struct VTKASMFILTERS_EXPORT KeyPointRule
 
 /// The key clusters of one grid cell holding the points xyz[points[i]],
 /// i < points.size(), whose PCA frame is `frame`. Fills `q` with the points in the frame
-/// (q[i] for points[i]). A cell whose extent along v2 is within rounding of
-/// its coordinates (CoordinateEpsilon) is flat.
+/// (q[i] for points[i]). A cell whose extent along v2 is within the rounding
+/// of its coordinates (CoordinateEpsilon) and of its PCA is flat.
 VTKASMFILTERS_EXPORT KeyClusters FindCellKeyClusters(
   Coordinates xyz, IdView points, const CellFrame& frame, const KeyPointRule& rule, LocalPoints& q);
 } // namespace asmcore

@@ -15,9 +15,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <numeric>
 #include <random>
 #include <set>
+#include <string>
 
 using asmcore::Index;
 using asmtest::AllIds;
@@ -475,6 +477,79 @@ TEST(KeyPoints, FlatCellHasNoKeyPoints)
   EXPECT_TRUE(kc.Flat);
   EXPECT_EQ(kc.Key.Size(), 0);
   EXPECT_EQ(kc.Middle.size(), q.size());
+}
+
+// The flat tolerance covers the PCA's rounding too: exactly planar cells about
+// the origin (where the coordinates' term vanishes), square or long and thin,
+// in any orientation, are flat; a relief of 1e-9 of their size is not.
+TEST(KeyPoints, PlanarCellsAboutTheOriginAreFlatWhateverTheirShape)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // Double coordinates (a relief of 1e-9 of the size is kept), and the same
+  // rounded to float (where the coordinates' rounding, relative to the
+  // points' distance from the origin, dominates: a relief of 1e-5 is kept).
+  for (const bool single : { false, true })
+  {
+    asmcore::KeyPointRule rule;
+    rule.CoordinateEpsilon = single ? FLT_EPSILON : DBL_EPSILON;
+    const double reliefKept = single ? 1e-5 : 1e-9;
+    auto round = [single](double v) { return single ? double(float(v)) : v; };
+    for (double size : { 1e-3, 50.0, 1e4 })
+    {
+      for (double aspect : { 1.0, 10.0, 100.0, 1000.0 })
+      {
+        for (int trial = 0; trial < 25; ++trial)
+        {
+          const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+          const Eigen::Matrix3d rotation = Eigen::AngleAxisd(3.0 * u(rng), axis).toRotationMatrix();
+          const bool lattice = trial % 2 == 0;
+          Cloud planar, bumped;
+          for (int i = 0; i < 30; ++i)
+          {
+            for (int j = 0; j < 30; ++j)
+            {
+              const double x = lattice ? i / 14.5 - 1.0 : u(rng);
+              const double y = (lattice ? j / 14.5 - 1.0 : u(rng)) / aspect;
+              const double bump = i == 15 && j == 15 ? reliefKept : 0.0;
+              const Eigen::Vector3d p = size * (rotation * Eigen::Vector3d(x, y, 0.0));
+              const Eigen::Vector3d b = size * (rotation * Eigen::Vector3d(x, y, bump));
+              asmtest::Add(planar, round(p[0]), round(p[1]), round(p[2]));
+              asmtest::Add(bumped, round(b[0]), round(b[1]), round(b[2]));
+            }
+          }
+          const std::string what = std::string(single ? "float" : "double") + ", size " +
+            std::to_string(size) + ", aspect " + std::to_string(aspect) + ", trial " +
+            std::to_string(trial);
+          asmcore::LocalPoints q;
+          const auto ids = AllIds(planar);
+          const auto flat = asmcore::FindCellKeyClusters(
+            planar.data(), ids, asmcore::ComputeCellFrame(planar.data(), ids), rule, q);
+          EXPECT_TRUE(flat.Flat) << what;
+          EXPECT_EQ(flat.Key.Size(), 0) << what;
+          const auto relief = asmcore::FindCellKeyClusters(
+            bumped.data(), ids, asmcore::ComputeCellFrame(bumped.data(), ids), rule, q);
+          EXPECT_FALSE(relief.Flat) << what;
+        }
+      }
+    }
+  }
+  // Points on a line (lambda1 = 0 up to rounding) have no relief either.
+  for (int trial = 0; trial < 25; ++trial)
+  {
+    const Eigen::Vector3d direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    Cloud line;
+    for (int i = 0; i < 30; ++i)
+    {
+      const Eigen::Vector3d p = (50.0 * (i / 14.5 - 1.0)) * direction;
+      asmtest::Add(line, p[0], p[1], p[2]);
+    }
+    asmcore::LocalPoints q;
+    const auto ids = AllIds(line);
+    const auto frame = asmcore::ComputeCellFrame(line.data(), ids);
+    EXPECT_TRUE(asmcore::FindCellKeyClusters(line.data(), ids, frame, {}, q).Flat)
+      << "trial " << trial << ", lambda1 " << frame.Lambda[1];
+  }
 }
 
 //------------------------------------------------------------------------------
