@@ -9,6 +9,7 @@
 #include "FilterHelpers.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkKeyPointError.h"
@@ -203,6 +204,24 @@ TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
   EXPECT_GT(expected[2], 0.0);
   EXPECT_EQ(measure(parts, simplified), expected);
   EXPECT_EQ(measure(parts, simplifiedParts), expected);
+
+  // The output has the simplified composite's own field data. (VTK's
+  // executive passes the first input's field data to the output before the
+  // filter runs, so that of the original needs nothing; that of the second
+  // input comes through the merged cloud.)
+  vtkNew<vtkIntArray> scanner;
+  scanner->SetName("ScannerId");
+  scanner->InsertNextValue(42);
+  simplifiedParts->GetFieldData()->AddArray(scanner);
+  vtkNew<vtkKeyPointError> error;
+  error->SetGenerateCurvature(false);
+  error->SetInputData(0, parts);
+  error->SetInputData(1, simplifiedParts);
+  error->Update();
+  vtkPolyData* out = vtkPolyData::SafeDownCast(error->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  ASSERT_NE(out->GetFieldData()->GetArray("ScannerId"), nullptr);
+  EXPECT_EQ(out->GetFieldData()->GetArray("ScannerId")->GetTuple1(0), 42.0);
 }
 
 // A composite without points (empty blocks, an image) gets a warning and an
