@@ -150,6 +150,27 @@ TEST(FastPaths, PaperModeJoinsUnclaimedPointsToTheNearestSample)
   }
   asmtest::Add(sheet, 1.001, 0.5, 0.02);
   asmtest::Add(sheet, 1.002, 0.2, 0.03);
+  // Cells of 0.01 (below 1, where h and h^2 differ): two blobs of 1500
+  // points near the left sides of cells 1 and 4 along x, and two points
+  // alone, at x = 0 (it sets the grid's origin) and at the right side of
+  // cell 2. The latter's ring (cells 1 to 3) holds the first blob's samples,
+  // about 2 cells away, but the second blob's, outside the ring, are nearer.
+  Cloud tiny;
+  {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> across(0.0, 0.004), along(0.0, 0.0003);
+    for (double left : { 0.0101, 0.0401 })
+    {
+      for (int i = 0; i < 1500; ++i)
+      {
+        const double x = left + along(rng);
+        const double y = across(rng);
+        asmtest::Add(tiny, x, y, across(rng));
+      }
+    }
+    asmtest::Add(tiny, 0.0, 0.0, 0.0);
+    asmtest::Add(tiny, 0.0299, 0.002, 0.002);
+  }
   struct Case
   {
     const Cloud* Points;
@@ -157,8 +178,8 @@ TEST(FastPaths, PaperModeJoinsUnclaimedPointsToTheNearestSample)
     double CellSize;
     Index Outliers; // joined points farther than half a cell from their sample, at least
   };
-  for (const Case& run :
-    { Case{ &sphere, 400, 0.0, 3 }, Case{ &sphere, 1000, 0.0, 3 }, Case{ &sheet, 3000, 1.0, 0 } })
+  for (const Case& run : { Case{ &sphere, 400, 0.0, 3 }, Case{ &sphere, 1000, 0.0, 3 },
+         Case{ &sheet, 3000, 1.0, 0 }, Case{ &tiny, 20, 0.01, 2 } })
   {
     const Cloud& c = *run.Points;
     const auto ids = AllIds(c);
