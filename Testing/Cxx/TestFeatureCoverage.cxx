@@ -101,6 +101,40 @@ TEST(FeatureCoverage, MinimaxCentreIsNearTheSmallestBall)
   EXPECT_EQ(centre[2], 3.0);
 }
 
+// A moved sample goes just far enough: its cluster's reach ends within the
+// bound, and within 1e-5 of it (20 halvings of the move).
+TEST(FeatureCoverage, AMovedSampleReachesNoFurtherThanTheBound)
+{
+  // A cluster of 21 points on [0, 2] along x, its sample on the first; its
+  // centre (1, 0, 0). For a bound of b (squared), the sample stops near
+  // x = 2 - sqrt(b), where the reach to x = 2 is sqrt(b).
+  Cloud points;
+  for (int i = 0; i <= 20; ++i)
+  {
+    asmtest::Add(points, 0.1 * i, 0.0, 0.0);
+  }
+  std::vector<Index> members(21);
+  std::iota(members.begin(), members.end(), Index(0));
+  const std::vector<Index> memberStart = { 0, 21 };
+  for (double bound : { 1.5, 2.0, 3.0, 3.9 })
+  {
+    std::vector<double> position = { 0.0, 0.0, 0.0 };
+    const std::vector<double> reach =
+      asmcore::SnappedReaches(points.data(), memberStart, members.data(), position.data());
+    ASSERT_DOUBLE_EQ(reach[0], 4.0);
+    const auto candidates = asmcore::SnapCandidates(
+      points.data(), memberStart, members.data(), { 1 }, reach, 0.0, position.data());
+    ASSERT_EQ(candidates.size(), 1u);
+    asmcore::MoveSnappedSamples(
+      points.data(), memberStart, members.data(), candidates, bound, position.data());
+    const double moved =
+      asmcore::SnappedReaches(points.data(), memberStart, members.data(), position.data())[0];
+    EXPECT_LE(moved, bound) << "bound " << bound;
+    EXPECT_GT(moved, bound * (1.0 - 1e-5)) << "bound " << bound;
+    EXPECT_NEAR(position[0], 2.0 - std::sqrt(bound), 1e-5);
+  }
+}
+
 TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
 {
   // 20 % of a sphere and of a bumpy box (keys), with hole filling on (the
