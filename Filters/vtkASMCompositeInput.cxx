@@ -56,6 +56,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   points->SetDataType(floats ? VTK_FLOAT : VTK_DOUBLE);
   points->SetNumberOfPoints(total);
   vtkDataSetAttributes::FieldList fields(static_cast<int>(leaves.size()));
+  std::vector<vtkSmartPointer<vtkPointData>> leafData; // each leaf's arrays that can be merged
   std::set<std::string> names;
   vtkIdType at = 0;
   for (std::size_t k = 0; k < leaves.size(); ++k)
@@ -87,12 +88,19 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
       copyTo(static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(3 * at));
     }
     at += leaf->GetNumberOfPoints();
-    vtkPointData* pd = leaf->GetPointData();
-    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    // The leaf's arrays with a tuple for each of its points (a shorter one
+    // is left out, as an array that some leaf lacks is).
+    vtkPointData* pd = leafData.emplace_back(vtkSmartPointer<vtkPointData>::New());
+    pd->ShallowCopy(leaf->GetPointData());
+    for (int a = pd->GetNumberOfArrays() - 1; a >= 0; --a)
     {
       if (const char* name = pd->GetArrayName(a))
       {
         names.insert(name);
+      }
+      if (pd->GetAbstractArray(a)->GetNumberOfTuples() < leaf->GetNumberOfPoints())
+      {
+        pd->RemoveArray(a);
       }
     }
     if (k == 0)
@@ -116,7 +124,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   for (std::size_t k = 0; k < leaves.size(); ++k)
   {
     const vtkIdType n = leaves[k].Points->GetNumberOfPoints();
-    out->CopyData(fields, leaves[k].Points->GetPointData(), static_cast<int>(k), at, n, 0);
+    out->CopyData(fields, leafData[k], static_cast<int>(k), at, n, 0);
     at += n;
   }
   for (const std::string& name : names)

@@ -10,7 +10,8 @@
  * The points of every vtkPointSet leaf, in the composite's traversal order,
  * become one vtkPolyData without cells (with the composite's field data): coordinates as floats
  * when every leaf's are floats, else as doubles; the point arrays that every leaf with points has,
- * with the same name, type and number of components (vtkDataSetAttributes::FieldList; the others
+ * with the same name, type and number of components and a tuple for each of the leaf's points
+ * (vtkDataSetAttributes::FieldList; the others
  * are dropped, and named), unless only the points are asked for. With the origins, two vtkIdType
  * arrays say where each point came from:
  * "vtkOriginalBlockIds", the leaf's flat index in the composite

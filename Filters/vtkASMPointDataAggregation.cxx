@@ -199,12 +199,15 @@ void CopyRepresentativesAOS(
     });
 }
 
-// Whether an array is averaged over the clusters (float and double data
-// arrays) rather than taken from the representatives; with snapping, none.
-bool Averaged(vtkAbstractArray* array, bool snap)
+// Whether an array of `pd` is averaged over the clusters (float and double
+// data arrays) rather than taken from the representatives; with snapping,
+// none. Global and pedigree ids are labels, whatever their type: never
+// averaged (VTK's convention: ids are not interpolated).
+bool Averaged(vtkPointData* pd, vtkAbstractArray* array, bool snap)
 {
   const int type = array->GetDataType();
-  return !snap && vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE);
+  return !snap && vtkDataArray::SafeDownCast(array) && (type == VTK_FLOAT || type == VTK_DOUBLE) &&
+    array != pd->GetGlobalIds() && array != pd->GetPedigreeIds();
 }
 
 // -1, 0 or 1: values a against b, NaN after every number and equal to NaN.
@@ -217,6 +220,13 @@ int CompareValues(T a, T b)
     return int(nanA) - int(nanB);
   }
   return a < b ? -1 : (b < a ? 1 : 0);
+}
+
+// Whether an input array is carried to the output: a tuple for every point.
+bool Carried(vtkAbstractArray* array, Index numberOfPoints)
+{
+  return array && array->GetNumberOfTuples() >= numberOfPoints &&
+    array->GetNumberOfComponents() >= 1;
 }
 
 bool IsAOS(vtkAbstractArray* a)
@@ -287,7 +297,7 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
   {
     vtkAbstractArray* in = inPD->GetAbstractArray(i);
-    if (!in || in->GetNumberOfTuples() < numberOfPoints || in->GetNumberOfComponents() < 1)
+    if (!Carried(in, numberOfPoints))
     {
       vtkWarningWithObjectMacro(
         reporter, << "Point-data array " << (in && in->GetName() ? in->GetName() : "(unnamed)")
@@ -303,7 +313,7 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
     out->SetNumberOfTuples(count);
     auto* inData = vtkDataArray::SafeDownCast(in);
     auto* outData = vtkDataArray::SafeDownCast(out);
-    if (Averaged(in, snap))
+    if (Averaged(inPD, in, snap))
     {
       const bool renormalise = inData == inPD->GetNormals() && in->GetNumberOfComponents() == 3;
       MeanWorker worker;
@@ -339,20 +349,21 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
   return dropped;
 }
 
-void ChooseAmongDuplicates(vtkPointData* inPD, SimplifyResult& result, bool snap, bool threads,
-  std::vector<std::pair<vtkIdType, Index>>* ties)
+void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyResult& result,
+  bool snap, bool threads, std::vector<std::pair<vtkIdType, Index>>* ties)
 {
   const auto& duplicates = result.RepresentativeDuplicates;
-  // The arrays, all compared; something to do only when one of them is
-  // taken from the representatives (with snapping: all of them), or when
+  // The arrays carried, all compared; something to do only when one of them
+  // is taken from the representatives (with snapping: all of them), or when
   // the ties are asked for.
   std::vector<vtkAbstractArray*> arrays;
   bool copied = false;
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
   {
-    if (vtkAbstractArray* array = inPD->GetAbstractArray(i))
+    vtkAbstractArray* array = inPD->GetAbstractArray(i);
+    if (Carried(array, numberOfPoints))
     {
-      copied = copied || !Averaged(array, snap);
+      copied = copied || !Averaged(inPD, array, snap);
       arrays.push_back(array);
     }
   }

@@ -57,7 +57,8 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// merged scans) may carry different values. A sample's representative
 /// input point becomes, among the points at exactly its position
 /// (SimplifyResult::RepresentativeDuplicates), the one whose point data
-/// comes first: array by array in the order of `inPD`, component by
+/// comes first: array by array in the order of `inPD` (those carried: with a
+/// tuple for each of the `numberOfPoints` points), component by
 /// component, by value (CompareTuples), then the lower id. So the tuples
 /// copied from representatives (and, with `snap`, every array) do not depend
 /// on the input's order or on the number of MPI processes. Nothing to do
@@ -67,8 +68,9 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// order, the other points at each sample's position with the same values
 /// in every array of `inPD` (a distributed run's string arrays, which are
 /// not in `inPD`, decide among them: FetchRepresentativeValues).
-void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::SimplifyResult& result, bool snap,
-  bool threads, std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
+void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Index numberOfPoints,
+  asmcore::SimplifyResult& result, bool snap, bool threads,
+  std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
 
 /// -1, 0 or 1: the tuple of point a against that of point b in `array`,
 /// component by component, by value (NaN after every number and equal to

@@ -60,11 +60,16 @@ int vtkASMSimplify::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 bool vtkASMSimplify::CheckParameters()
 {
+  // Every floating-point property (a clamped setter lets NaN through).
   const double values[] = { this->OutputFraction, this->CellSize, this->SamplesPerCell, this->Alpha,
     this->ErrorTolerance, this->CurvatureWeight, this->FeatureSamplesPerCell, this->VariationBudget,
-    this->VariationCap };
+    this->VariationCap, this->KeyPointRadius, this->KeyPointProminence, this->BudgetExponent,
+    this->HoleFillFraction, this->LloydVariationWeight };
   const char* names[] = { "OutputFraction", "CellSize", "SamplesPerCell", "Alpha", "ErrorTolerance",
-    "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget", "VariationCap" };
+    "CurvatureWeight", "FeatureSamplesPerCell", "VariationBudget", "VariationCap", "KeyPointRadius",
+    "KeyPointProminence", "BudgetExponent", "HoleFillFraction", "LloydVariationWeight" };
+  static_assert(sizeof(values) / sizeof(values[0]) == sizeof(names) / sizeof(names[0]),
+    "a name for every value");
   for (std::size_t i = 0; i < sizeof(values) / sizeof(values[0]); ++i)
   {
     if (!std::isfinite(values[i]))
@@ -93,7 +98,8 @@ int vtkASMSimplify::RequestData(
     for (const std::string& name : dropped)
     {
       vtkWarningMacro(<< "Point array " << name
-                      << " is not on every block with points: it is not passed on.");
+                      << " is not on every block with points, with a value for each point: "
+                         "it is not passed on.");
     }
     input = merged;
   }
@@ -273,7 +279,7 @@ int vtkASMSimplify::RequestData(
   std::vector<std::pair<vtkIdType, asmcore::Index>> ties;
   const bool fetching = distributed && !share.Cloud.Fetched.empty();
   asmvtk::ChooseAmongDuplicates(
-    inPD, result, this->SnapToInputPoints, threads, fetching ? &ties : nullptr);
+    inPD, numberOfPoints, result, this->SnapToInputPoints, threads, fetching ? &ties : nullptr);
   vtkNew<vtkPointData> fetchedPD;
   if (distributed &&
     !asmvtk::FetchRepresentativeValues(
@@ -318,7 +324,17 @@ int vtkASMSimplify::RequestData(
   outPD->AddArray(generated.KeyPoint);
   outPD->AddArray(generated.ClusterSize);
   outPD->AddArray(generated.SurfaceVariation);
-  outPD->AddArray(generated.OriginalIds);
+  outPD->AddArray(generated.OriginalIds); // (replacing an input's: ids into this input)
+  // An input's own origin arrays (an earlier run's) pair with the
+  // vtkOriginalPointIds just replaced: only this run's are kept.
+  if (!merged)
+  {
+    outPD->RemoveArray("vtkOriginalBlockIds");
+  }
+  if (!distributed)
+  {
+    outPD->RemoveArray("vtkOriginalProcessIds");
+  }
   if (merged)
   {
     // A composite input: the ids in the representative's own block (which
@@ -342,7 +358,7 @@ int vtkASMSimplify::RequestData(
     }
     outPD->AddArray(processIds);
   }
-  if (nameTaken || outPD->GetNormals())
+  if (outPD->GetNormals()) // the input's, carried: the PCA normals beside them
   {
     outPD->AddArray(generated.Normals);
   }

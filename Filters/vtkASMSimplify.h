@@ -53,8 +53,8 @@
  * of a partitioned file, ...): the vtkPointSet leaves are ONE cloud, not one
  * run each: N_s is the size of the whole output (a vtkPolyData), and
  * overlapping leaves are thinned together. The point arrays that every leaf
- * with points has (same name, type and components) are carried, the others
- * dropped with a warning; "vtkOriginalBlockIds" (the leaf's flat index) and
+ * with points has (same name, type and components, a value for each point)
+ * are carried, the others dropped with a warning; "vtkOriginalBlockIds" (the leaf's flat index) and
  * "vtkOriginalPointIds" (the id in that leaf) name each sample's
  * representative.
  *

@@ -108,12 +108,14 @@ class MessageCounter : public vtkCommand
 {
 public:
   static MessageCounter* New() { return new MessageCounter; }
-  void Execute(vtkObject*, unsigned long event, void*) override
+  void Execute(vtkObject*, unsigned long event, void* callData) override
   {
     (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings)++;
+    this->LastMessage = callData ? static_cast<const char*>(callData) : "";
   }
   int Warnings = 0;
   int Errors = 0;
+  std::string LastMessage; ///< the text of the last warning or error
 };
 
 /// A filter whose warnings and errors are counted.

@@ -21,6 +21,8 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace asmtest;
 
@@ -230,6 +232,43 @@ TEST(ASMSimplifyBadInput, NegativeAndAbsurdParameters)
     run.Filter->SetCellSize(std::numeric_limits<double>::infinity());
     EXPECT_EQ(run.Execute(input)->GetNumberOfPoints(), 0);
     EXPECT_EQ(run.Messages->Errors, 1);
+  }
+}
+
+// Each floating-point property set to NaN or infinity (the clamped setters
+// let NaN through): an error naming it and an empty output, in both modes.
+TEST(ASMSimplifyBadInput, EveryNonFiniteParameterIsAnError)
+{
+  auto input = ToPolyData(asmtest::Sphere(2000, 1.0));
+  using Setter = void (vtkASMSimplify::*)(double);
+  const std::vector<std::pair<const char*, Setter>> properties = {
+    { "OutputFraction", &vtkASMSimplify::SetOutputFraction },
+    { "CellSize", &vtkASMSimplify::SetCellSize },
+    { "SamplesPerCell", &vtkASMSimplify::SetSamplesPerCell },
+    { "Alpha", &vtkASMSimplify::SetAlpha },
+    { "ErrorTolerance", &vtkASMSimplify::SetErrorTolerance },
+    { "CurvatureWeight", &vtkASMSimplify::SetCurvatureWeight },
+    { "FeatureSamplesPerCell", &vtkASMSimplify::SetFeatureSamplesPerCell },
+    { "VariationBudget", &vtkASMSimplify::SetVariationBudget },
+    { "VariationCap", &vtkASMSimplify::SetVariationCap },
+    { "KeyPointRadius", &vtkASMSimplify::SetKeyPointRadius },
+    { "KeyPointProminence", &vtkASMSimplify::SetKeyPointProminence },
+    { "BudgetExponent", &vtkASMSimplify::SetBudgetExponent },
+    { "HoleFillFraction", &vtkASMSimplify::SetHoleFillFraction },
+    { "LloydVariationWeight", &vtkASMSimplify::SetLloydVariationWeight },
+  };
+  for (const auto& [name, set] : properties)
+  {
+    for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+    {
+      FilterRun run;
+      run.Filter->SetMode(mode);
+      (run.Filter.GetPointer()->*set)(std::nan(""));
+      EXPECT_EQ(run.Execute(input)->GetNumberOfPoints(), 0) << name << ", mode " << mode;
+      EXPECT_EQ(run.Messages->Errors, 1) << name << ", mode " << mode;
+      EXPECT_NE(run.Messages->LastMessage.find(name), std::string::npos)
+        << run.Messages->LastMessage;
+    }
   }
 }
 

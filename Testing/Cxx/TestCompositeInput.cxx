@@ -224,6 +224,44 @@ TEST(CompositeInput, PartitionsGiveTheRequestedCountAndTheSameError)
   EXPECT_EQ(out->GetFieldData()->GetArray("ScannerId")->GetTuple1(0), 42.0);
 }
 
+// A leaf's array with fewer values than the leaf's points is left out with
+// a warning naming it (it is not copied past its end).
+TEST(CompositeInput, AShortArrayInALeafIsDroppedWithAWarning)
+{
+  const asmtest::Cloud cloud = asmtest::Sphere(5000, 1.0, 6);
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  vtkSmartPointer<vtkPolyData> first = Block(cloud, 0, 2000);
+  vtkSmartPointer<vtkPolyData> second = Block(cloud, 2000, 5000);
+  for (vtkPolyData* leaf : { first.GetPointer(), second.GetPointer() })
+  {
+    vtkNew<vtkDoubleArray> shortArray;
+    shortArray->SetName("Short");
+    shortArray->SetNumberOfTuples(leaf == first ? 10 : 3000); // short in the first leaf only
+    shortArray->Fill(1.0);
+    leaf->GetPointData()->AddArray(shortArray);
+  }
+  blocks->SetBlock(0, first);
+  blocks->SetBlock(1, second);
+  vtkNew<vtkASMSimplify> simplify;
+  vtkNew<asmtest::MessageCounter> messages;
+  simplify->AddObserver(vtkCommand::WarningEvent, messages);
+  simplify->AddObserver(vtkCommand::ErrorEvent, messages);
+  simplify->SetTargetModeToNumberOfOutputPoints();
+  simplify->SetNumberOfOutputPoints(300);
+  simplify->SetInputData(blocks);
+  simplify->Update();
+  vtkPolyData* out = vtkPolyData::SafeDownCast(simplify->GetOutputDataObject(0));
+  ASSERT_NE(out, nullptr);
+  EXPECT_EQ(out->GetNumberOfPoints(), 300);
+  EXPECT_EQ(messages->Errors, 0) << messages->LastMessage;
+  EXPECT_EQ(messages->Warnings, 1);
+  EXPECT_NE(messages->LastMessage.find("Short"), std::string::npos) << messages->LastMessage;
+  EXPECT_EQ(out->GetPointData()->GetArray("Short"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("Value"), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("Label"), nullptr);
+}
+
 // A composite without points (empty blocks, an image) gets a warning and an
 // empty output, as an empty point set does.
 TEST(CompositeInput, NoPointsGiveAWarningAndAnEmptyOutput)

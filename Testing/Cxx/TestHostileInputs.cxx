@@ -456,6 +456,42 @@ TEST(HostileInputs, ArraysShorterThanThePointsAreDroppedWithAWarning)
   EXPECT_EQ(error->GetOutput(0)->GetNumberOfPoints(), 100);
 }
 
+// A short array is left out of the choice among exact duplicates too (it
+// was read past its end there, and decided the choice by what lay beyond).
+TEST(HostileInputs, ShortArraysDoNotDecideAmongDuplicates)
+{
+  const asmtest::Cloud once = asmtest::Sphere(2000, 1.0, 12);
+  asmtest::Cloud twice = once;
+  twice.insert(twice.end(), once.begin(), once.end());
+  auto input = ToPolyData(twice);
+  vtkNew<vtkDoubleArray> shortArray; // first: compared first, were it compared
+  shortArray->SetName("Short");
+  shortArray->InsertNextValue(1.0);
+  input->GetPointData()->AddArray(shortArray);
+  vtkNew<vtkIntArray> label; // 1 on the first copy, 0 on the second: 0 comes first
+  label->SetName("Label");
+  for (vtkIdType i = 0; i < 4000; ++i)
+  {
+    label->InsertNextValue(i < 2000 ? 1 : 0);
+  }
+  input->GetPointData()->AddArray(label);
+  for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    FilterRun run;
+    run.Filter->SetMode(mode);
+    run.Filter->SetSnapToInputPoints(true);
+    run.Count(150);
+    vtkPolyData* out = run.Execute(input);
+    ASSERT_EQ(out->GetNumberOfPoints(), 150);
+    EXPECT_EQ(out->GetPointData()->GetArray("Short"), nullptr);
+    vtkDataArray* labels = out->GetPointData()->GetArray("Label");
+    for (vtkIdType s = 0; s < 150; ++s)
+    {
+      EXPECT_EQ(labels->GetTuple1(s), 0.0) << "mode " << mode << ", sample " << s;
+    }
+  }
+}
+
 TEST(HostileInputs, CoordinatesWhoseSquaresOverflow)
 {
   // A sphere of radius 1e160: finite coordinates, but every squared
