@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -98,6 +99,34 @@ inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>
   const auto range = vtk::DataArrayValueRange<3>(data);
   std::copy(range.begin(), range.end(), copy.begin());
   return copy.data();
+}
+
+/// The relative precision of the coordinates of `points` (the key point
+/// rule's CoordinateEpsilon): a double's for double arrays, unless every
+/// coordinate would fit in a float unchanged (doubles made from floats, as an
+/// upstream filter that converts its points gives them); a float's for float
+/// and integer arrays. So the same values give the same key points whatever
+/// array holds them. Reads doubles until the first that a float cannot hold.
+inline double CoordinateEpsilon(vtkPoints* points)
+{
+  auto* doubles = points ? vtkDoubleArray::FastDownCast(points->GetData()) : nullptr;
+  if (points && points->GetDataType() == VTK_DOUBLE)
+  {
+    if (!doubles)
+    {
+      return std::numeric_limits<double>::epsilon(); // (another layout: not read)
+    }
+    const double* v = doubles->GetPointer(0);
+    const double* end = v + 3 * doubles->GetNumberOfTuples();
+    const bool floats = std::all_of(v, end, [](double x) {
+      return static_cast<double>(static_cast<float>(x)) == x || x != x; // NOLINT (NaN)
+    });
+    if (!floats)
+    {
+      return std::numeric_limits<double>::epsilon();
+    }
+  }
+  return std::numeric_limits<float>::epsilon();
 }
 
 /// Asks the kernel to back [data, data + bytes) with huge pages where it can

@@ -143,12 +143,15 @@ int vtkASMSimplify::RequestData(
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   vtkIdType skipped = numberOfPoints - valid;
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
+  double coordinateEpsilon = numberOfPoints > 0 ? asmvtk::CoordinateEpsilon(input->GetPoints())
+                                                : std::numeric_limits<float>::epsilon();
   if (distributed)
   {
     asmvtk::DropDuplicateGhosts(input, ids, idList);
     valid = comm.Sum(static_cast<Index>(ids.size()));
     skipped = comm.Sum(static_cast<Index>(skipped));
     pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
+    coordinateEpsilon = -comm.Max(-coordinateEpsilon); // a double's if any process needs it
     if (valid == 0)
     {
       vtkWarningMacro(<< "The input has no points: the output is empty.");
@@ -224,8 +227,7 @@ int vtkASMSimplify::RequestData(
     parameters.ErrorTolerance *=
       distributed ? share.Diagonal : asmcore::ComputeBounds(xyz, ids).Diagonal();
   }
-  parameters.CoordinateEpsilon = pointsType == VTK_DOUBLE ? std::numeric_limits<double>::epsilon()
-                                                          : std::numeric_limits<float>::epsilon();
+  parameters.CoordinateEpsilon = coordinateEpsilon;
 
   asmvtk::CollectiveChannel channel(comm);
   if (distributed && parameters.Mode == asmcore::SimplifyMode::FeaturePreserving)

@@ -2,6 +2,7 @@
 // Messy scan data (README "Messy data"): NaN holes, exact duplicates,
 // georeferenced float coordinates, far outliers, one very dense cell, 64-bit
 // ids, extremely anisotropic bounds. Each gives exactly N_s sensible points.
+#include "FeatureShapes.h"
 #include "FilterHelpers.h"
 
 #include "Core/Simplify.h"
@@ -18,6 +19,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -224,6 +227,57 @@ TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
   vtkPolyData* fine = precise.Execute(ToPolyData(shifted, VTK_FLOAT));
   EXPECT_EQ(fine->GetPoints()->GetDataType(), VTK_DOUBLE);
   EXPECT_LT(SphereDeviation(fine, far, radius, false), sagitta + 1.0);
+}
+
+// Float coordinates in a double array (an upstream filter that converts its
+// points, such as vtkRedistributeDataSetFilter, gives them) carry a float's
+// rounding: the same output as the float array, so flat faces rounded to
+// float get no key points either way.
+TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
+{
+  // A box, turned so that its flat faces' float rounding is off the plane,
+  // and a few NaN points; as floats, and as those floats in a double array.
+  asmtest::Cloud c = asmtest::Box(20000).Points;
+  const Eigen::Matrix3d turn =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    Eigen::Map<Eigen::Vector3d>(c.data() + i) = turn * Eigen::Vector3d(c[i], c[i + 1], c[i + 2]);
+  }
+  for (int i = 0; i < 5; ++i)
+  {
+    asmtest::Add(c, std::nan(""), 0.0, 0.0);
+  }
+  vtkSmartPointer<vtkPolyData> floats = ToPolyData(c, VTK_FLOAT);
+  vtkNew<vtkPoints> widened;      // (through the float array: GCC 12's -O3 may drop
+  widened->SetDataTypeToDouble(); // a double -> float -> double rounding in registers)
+  widened->SetNumberOfPoints(floats->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < floats->GetNumberOfPoints(); ++i)
+  {
+    widened->SetPoint(i, floats->GetPoint(i));
+  }
+  vtkNew<vtkPolyData> doubles;
+  doubles->SetPoints(widened);
+  ASSERT_NE(doubles->GetPoint(1)[0], c[3]) << "rounded to float";
+  for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+  {
+    vtkSmartPointer<vtkPolyData> outputs[2];
+    for (vtkPolyData* input : { floats.GetPointer(), doubles.GetPointer() })
+    {
+      FilterRun run;
+      run.Filter->SetMode(mode);
+      run.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+      run.Count(1000);
+      vtkSmartPointer<vtkPolyData>& out = outputs[input == doubles.GetPointer()];
+      out = vtkSmartPointer<vtkPolyData>::New();
+      out->ShallowCopy(run.Execute(input));
+    }
+    ASSERT_EQ(outputs[0]->GetNumberOfPoints(), 1000);
+    EXPECT_TRUE(asmtest::SamePoints(outputs[0], outputs[1])) << "mode " << mode;
+    EXPECT_EQ(
+      FieldValue(outputs[0], "NumberOfKeyPoints"), FieldValue(outputs[1], "NumberOfKeyPoints"))
+      << "mode " << mode;
+  }
 }
 
 TEST(HostileInputs, OnePercentFarOutliers)
