@@ -264,7 +264,9 @@ struct LocalCloud
 /// point, to the owners of the cells within `haloRings` cells. String,
 /// variant and bit arrays are listed in LocalCloud::Fetched instead. Arrays
 /// that some process with points lacks, or has with fewer tuples than
-/// points, are dropped (LocalCloud::Dropped says why).
+/// points, are dropped (LocalCloud::Dropped says why). A process without
+/// points (`ids` empty) need not have the arrays: it sends no values, and
+/// the arrays' types and components come from the processes with points.
 LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const double* xyz,
   asmcore::IdView ids, const asmcore::CellPartition& partition, int haloRings,
   const asmcore::Execution& execution = {});

@@ -196,11 +196,19 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   const int payloadEnd = width;
   width += 2;
 
-  std::vector<vtkDataArray*> arrays;
-  arrays.reserve(slots.size());
-  for (const ArraySlot& s : slots)
+  // Where this process reads each slot's values. Only a process that sends
+  // points reads any: AgreeOnArrays kept an array only if every such process
+  // has it with the agreed type and components. A process without points
+  // voted for none, may lack the arrays (or hold others of the same name),
+  // and sends no tuple: its records' layout comes from the agreement (the
+  // slots) alone, and its entries stay null.
+  std::vector<vtkDataArray*> arrays(slots.size(), nullptr);
+  if (!ids.empty())
   {
-    arrays.push_back(inPD->GetArray(s.Name.c_str()));
+    for (std::size_t a = 0; a < slots.size(); ++a)
+    {
+      arrays[a] = inPD->GetArray(slots[a].Name.c_str());
+    }
   }
   // A point goes to the owners of the cells within haloRings of its own.
   const int processes = comm.Size();
@@ -246,7 +254,7 @@ LocalCloud Redistribute(const Communication& comm, vtkPointSet* input, const dou
   bool standard = true;
   for (vtkDataArray* array : arrays)
   {
-    standard = standard && array->HasStandardMemoryLayout();
+    standard = standard && (!array || array->HasStandardMemoryLayout());
   }
   auto fill = [&](Index first, Index last) {
     std::vector<double> tuple;
