@@ -170,9 +170,19 @@ int vtkKeyPointError::RequestData(
 
   asmcore::ComparisonOptions options;
   options.Rule.Alpha = this->Alpha;
-  options.Rule.CoordinateEpsilon = original->GetPoints()->GetDataType() == VTK_DOUBLE
-    ? std::numeric_limits<double>::epsilon()
-    : std::numeric_limits<float>::epsilon();
+  // The coordinates' precision, of the whole original cloud (as
+  // vtkASMSimplify takes it): double when any process holds double points.
+  // A process without points (an empty piece, a composite whose leaves
+  // are empty here: no vtkPoints at all) has no say.
+  vtkPoints* originalPoints = original->GetPoints();
+  bool doublePoints = originalPoints && original->GetNumberOfPoints() > 0 &&
+    originalPoints->GetDataType() == VTK_DOUBLE;
+  if (distributed)
+  {
+    doublePoints = comm.Max(doublePoints ? 1.0 : 0.0) > 0.0;
+  }
+  options.Rule.CoordinateEpsilon =
+    doublePoints ? std::numeric_limits<double>::epsilon() : std::numeric_limits<float>::epsilon();
   options.CellSize = this->CellSize;
   options.SamplesPerCell = this->SamplesPerCell;
   options.Measure = this->DistanceMeasure == SQUARED_DISTANCE
@@ -182,13 +192,27 @@ int vtkKeyPointError::RequestData(
   // Small clouds on the calling thread (MinimumPointsForThreads).
   const bool threads = static_cast<vtkIdType>(orig.Ids.size()) >=
     asmvtk::MinimumPointsForThreads(this->MinimumPointsForThreads);
+  // The simplified cloud's normals sign the curvature: only a 3-component
+  // array with a tuple for every point.
+  const vtkIdType n = simplified->GetNumberOfPoints();
+  vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
+  const bool useNormals =
+    inNormals && inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= n;
+  if (this->GenerateCurvature && inNormals && !useNormals)
+  {
+    vtkWarningMacro(<< "The simplified cloud's normals (" << inNormals->GetNumberOfTuples()
+                    << " tuples of " << inNormals->GetNumberOfComponents()
+                    << " components) do not give each of its " << n
+                    << " points a normal: they do not sign the curvature.");
+  }
   asmvtk::DistributedComparison shared;
   if (distributed)
   {
-    // Figures of the whole clouds (vtkASMDistributedMetrics.h).
+    // Figures of the whole clouds (vtkASMDistributedMetrics.h). (Without
+    // usable normals on a process that holds simplified points, no
+    // process uses normals: CompareDistributed agrees on it.)
     std::vector<double> normals;
-    vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
-    if (inNormals && inNormals->GetNumberOfComponents() == 3)
+    if (useNormals)
     {
       for (Index id : simp.Ids)
       {
@@ -197,7 +221,7 @@ int vtkKeyPointError::RequestData(
       }
     }
     shared = asmvtk::CompareDistributed(comm, orig.Xyz, orig.Ids, simp.Xyz, simp.Ids,
-      inNormals && inNormals->GetNumberOfComponents() == 3 ? normals.data() : nullptr, options,
+      useNormals ? normals.data() : nullptr, options,
       this->GenerateCurvature ? this->CurvatureNeighbors : 0,
       asmvtk::SMPExecution(this, 0.0, 0.8, threads));
   }
@@ -215,7 +239,6 @@ int vtkKeyPointError::RequestData(
   }
 
   // The simplified cloud, one vertex per point, its arrays, and the errors.
-  const vtkIdType n = simplified->GetNumberOfPoints();
   output->SetPoints(simplified->GetPoints());
   output->SetVerts(asmvtk::VertexCells(n, threads));
   vtkPointData* pd = output->GetPointData();
@@ -246,9 +269,6 @@ int vtkKeyPointError::RequestData(
   {
     // Estimated at the finite simplified points, signed by their normals.
     std::vector<double> queries, normals;
-    vtkDataArray* inNormals = simplified->GetPointData()->GetNormals();
-    const bool useNormals =
-      inNormals && inNormals->GetNumberOfComponents() == 3 && inNormals->GetNumberOfTuples() >= n;
     for (Index id : simp.Ids)
     {
       queries.insert(queries.end(), simp.Xyz + 3 * id, simp.Xyz + 3 * id + 3);

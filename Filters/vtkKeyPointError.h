@@ -34,7 +34,8 @@
  * "MeanCurvature" and "NeighborhoodSurfaceVariation" estimated from the
  * original cloud (NaN for skipped points; the mean curvature positive where
  * the surface bends away from the simplified cloud's normals, or, without
- * normals, away from the original cloud's centroid); all figures as
+ * normals, away from the original cloud's centroid; normals with fewer
+ * tuples than points are not used, with a warning); all figures as
  * one-value arrays in its field data.
  * Output port 1: a one-row vtkTable of the same figures (ParaView shows it in
  * a spreadsheet view). Figure names end in "Relative" when divided by the

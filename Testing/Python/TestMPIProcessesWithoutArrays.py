@@ -19,6 +19,20 @@ same points as a serial run on the whole cloud; every process's output has
 the holder's arrays with their types, the colours still the active scalars,
 and each sample's colour and name are its representative's.
 
+vtkKeyPointError on each of these runs, its original the same input (no
+vtkPoints on the processes without points, or leaves without points, whose
+merged cloud has none: until 2026-11-28 a SIGSEGV in RequestData on
+original->GetPoints()): the figures of a serial run on the whole clouds, the
+same on every process. With the simplified cloud's normals one tuple long
+(whose buffer still holds normals pointing the other way), it warns and
+signs the curvature as without normals (it used to read the normals past
+the array's end in distributed runs). And a nearly flat patch of double
+points (a relief of 1e-8 on coordinates about 1.5: flat at float precision,
+not at double precision), both clouds held by one process: every process
+takes the coordinates' precision of the whole cloud (double, as
+vtkASMSimplify does), so the original and simplified key points are a
+serial run's, more than none; a process without points used to take float.
+
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
 import numpy as np
@@ -27,7 +41,7 @@ from vtkmodules.vtkCommonCore import VTK_DOUBLE, VTK_UNSIGNED_CHAR, vtkPoints, v
 from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet, vtkPolyData
 
 from asm_mpi_setup import controller_and_bunny, gathered
-from asmvtk import vtkASMSimplify
+from asmvtk import vtkASMSimplify, vtkKeyPointError
 
 NS = 300
 controller, rank, size, xyz = controller_and_bunny(3, 3000)
@@ -136,9 +150,116 @@ def check_simplify(holder, composite, mode):
         print("cloud on process %d (%s), mode %d: output points per process %s"
               % (holder, "two leaves" if composite else "one polydata", mode,
                  counts.astype(int).tolist()))
+    return data, asm, every
+
+
+def polydata_of(points):
+    cloud = vtkPolyData()
+    vtk_points = vtkPoints()
+    vtk_points.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=1))
+    cloud.SetPoints(vtk_points)
+    return cloud
+
+
+def measure(original, simplified, controller=controller, warnings=None):
+    kpe = vtkKeyPointError()
+    if controller is None:
+        kpe.SetController(None)
+    if warnings is not None:
+        kpe.AddObserver("WarningEvent", lambda caller, event: warnings.append(event))
+    kpe.SetInputData(0, original)
+    kpe.SetInputData(1, simplified)
+    kpe.Update()
+    return kpe
+
+
+def figures_of(kpe, names):
+    fd = kpe.GetOutput().GetFieldData()
+    return np.array([fd.GetArray(name).GetValue(0) for name in names])
+
+
+def check_same_figures(kpe, serial, what):
+    """kpe's figures (field data) are serial's, the same on every process."""
+    table = serial.GetOutputDataObject(1)
+    names = [table.GetColumnName(c) for c in range(table.GetNumberOfColumns())]
+    assert len(names) == 22 and table.GetNumberOfRows() == 1, (what, names)
+    expected = figures_of(serial, names)
+    mine = figures_of(kpe, names)
+    every = gathered(controller, mine).reshape(size, len(names))
+    spread = np.abs(every - every[0]).max(0) / np.maximum(1.0, np.abs(every[0]))
+    assert np.all(spread <= 1e-12), (what, dict(zip(names, every.T.tolist())))
+    worst = np.abs(mine - expected) / np.maximum(1.0, np.abs(expected))
+    assert np.all(worst <= 1e-9), (what, dict(zip(names, zip(mine, expected))))
+    return dict(zip(names, mine))
+
+
+def check_key_point_error(holder, composite, mode, data, asm, every):
+    what = (holder, composite, mode, rank)
+    kpe = measure(data, asm.GetOutput())
+    local = asm.GetOutput().GetNumberOfPoints()
+    out = kpe.GetOutput()
+    assert out.GetNumberOfPoints() == local, what
+    assert out.GetPointData().GetArray("Error").GetNumberOfTuples() == local, what
+    serial = measure(cloud_of(np.arange(len(xyz))), polydata_of(every), controller=None)
+    figures = check_same_figures(kpe, serial, what)
+    assert figures["NumberOfOriginalPoints"] == len(xyz), (what, figures)
+    assert figures["NumberOfSimplifiedPoints"] == NS, (what, figures)
+    assert figures["NumberOfOriginalKeyPoints"] > 0, (what, figures)
+
+    # Normals one tuple long: not read past their end (their buffer still
+    # holds the output's normals reversed), the curvature signed as without
+    # normals, and a warning where they are short.
+    normals = asm.GetOutput().GetPointData().GetNormals()
+    assert normals is not None and normals.GetNumberOfTuples() == local, what
+    short, bare = vtkPolyData(), vtkPolyData()
+    short.ShallowCopy(asm.GetOutput())
+    bare.ShallowCopy(asm.GetOutput())
+    reversed_normals = numpy_to_vtk(-vtk_to_numpy(normals).reshape(local, 3), deep=1)
+    reversed_normals.SetName("Normals")
+    if local > 1:
+        first = reversed_normals.GetTuple3(0)
+        reversed_normals.Reset()  # (keeps the buffer: the other tuples are still there)
+        reversed_normals.InsertNextTuple3(*first)
+        assert reversed_normals.GetNumberOfTuples() == 1
+    short.GetPointData().SetNormals(reversed_normals)
+    bare.GetPointData().RemoveArray("Normals")
+    assert bare.GetPointData().GetNormals() is None
+    warnings = []
+    with_short = measure(data, short, warnings=warnings)
+    without = measure(data, bare)
+    assert len(warnings) == (1 if local > 1 else 0), (what, warnings)
+    for name in ("MeanCurvature", "NeighborhoodSurfaceVariation"):
+        a = vtk_to_numpy(with_short.GetOutput().GetPointData().GetArray(name))
+        b = vtk_to_numpy(without.GetOutput().GetPointData().GetArray(name))
+        assert np.array_equal(a, b), (what, name)
+    if rank == 0:
+        print("  key point error: %s" % {k: figures[k] for k in ("AKPE", "MKPE",
+                                                                "NumberOfOriginalKeyPoints")})
+
+
+def check_precision(holder):
+    """A nearly flat patch: key points at double precision only."""
+    u = np.linspace(1.0, 2.0, 60)
+    gx, gy = np.meshgrid(u, u, indexing="ij")
+    gx, gy = gx.ravel(), gy.ravel()
+    patch = np.column_stack([gx, gy, 1.5 + 1e-8 * np.sin(9.0 * gx) * np.cos(7.0 * gy)])
+    every_seventh = patch[::7]
+    original = polydata_of(patch) if rank == holder else vtkPolyData()
+    simplified = polydata_of(every_seventh) if rank == holder else vtkPolyData()
+    kpe = measure(original, simplified)
+    serial = measure(polydata_of(patch), polydata_of(every_seventh), controller=None)
+    figures = check_same_figures(kpe, serial, ("patch", holder, rank))
+    assert figures["NumberOfOriginalKeyPoints"] > 0, figures
+    assert figures["NumberOfSimplifiedKeyPoints"] > 0, figures
+    if rank == 0:
+        print("patch on process %d: key points %d original, %d simplified"
+              % (holder, figures["NumberOfOriginalKeyPoints"],
+                 figures["NumberOfSimplifiedKeyPoints"]))
 
 
 for holder in (0, size - 1):
     for composite in (False, True):
         for mode in (vtkASMSimplify.PAPER, vtkASMSimplify.FEATURE_PRESERVING):
-            check_simplify(holder, composite, mode)
+            check_key_point_error(holder, composite, mode,
+                                  *check_simplify(holder, composite, mode))
+    check_precision(holder)
