@@ -300,7 +300,13 @@ int vtkKeyPointError::RequestData(
     }
   }
 
-  // The figures: field data of the output, and a one-row table.
+  // The figures: field data of the output (on every process), and a one-row
+  // table. A distributed run's figures are those of the whole clouds, the
+  // same on every process: as ParaView's global reductions do (e.g.
+  // vtkIntegrateAttributes), process 0 alone outputs them, so that the
+  // table gathered from the processes (spreadsheet view, SaveData) has one
+  // row; the other processes' tables have the same columns and no row.
+  const vtkIdType rows = !distributed || comm.Rank() == 0 ? 1 : 0;
   const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : 1.0;
   const double keyScale =
     this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
@@ -337,8 +343,11 @@ int vtkKeyPointError::RequestData(
   for (const auto& figure : figures)
   {
     asmvtk::AddFieldValue(fd, figure.first, figure.second);
-    auto column = asmvtk::NewArray<vtkDoubleArray>(figure.first, 1, 1);
-    column->SetValue(0, figure.second);
+    auto column = asmvtk::NewArray<vtkDoubleArray>(figure.first, 1, rows);
+    if (rows > 0)
+    {
+      column->SetValue(0, figure.second);
+    }
     table->AddColumn(column);
   }
   this->UpdateProgress(1.0);

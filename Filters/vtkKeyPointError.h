@@ -38,8 +38,14 @@
  * tuples than points are not used, with a warning); all figures as
  * one-value arrays in its field data.
  * Output port 1: a one-row vtkTable of the same figures (ParaView shows it in
- * a spreadsheet view). Figure names end in "Relative" when divided by the
- * original's bounding-box diagonal (by its square for squared AKPE/MKPE).
+ * a spreadsheet view). In a distributed run (see SetController) the figures
+ * are global, and only process 0's table has the row: the other processes
+ * output the same columns with no row, as ParaView's global reductions
+ * (vtkIntegrateAttributes) leave their satellites empty, so that the table
+ * gathered over the processes (spreadsheet view, SaveData, Fetch) has one
+ * row. The field data figures of port 0 stay on every process. Figure
+ * names end in "Relative" when divided by the original's bounding-box
+ * diagonal (by its square for squared AKPE/MKPE).
  *
  * @sa vtkASMSimplify
  */
@@ -159,7 +165,9 @@ public:
    * The processes of a parallel run; default the global controller. With
    * several processes (pvbatch --mpi, pvserver) both clouds may be split
    * over them in any way: the figures are those of the whole clouds, the
-   * same on every process (see vtkASMDistributedMetrics.h), and each process
+   * same on every process in the field data of output 0 (see
+   * vtkASMDistributedMetrics.h), and in the one row of process 0's table
+   * (output 1; the other processes' tables have no row); each process
    * outputs its own simplified points.
    */
   virtual void SetController(vtkMultiProcessController*);

@@ -3,7 +3,8 @@ script runs on process 0; ParaView runs the pipeline on every process): the
 bunny read on process 0, spread over the K processes by ParaView's
 RedistributeDataSet (a spatial split, unlike TestMPISimplify.py's
 interleaved one), simplified by the ASMSimplify proxy to exactly N_s = 1800
-points (Always Distribute on) and measured by the KeyPointError proxy. The
+points (Always Distribute on) and measured by the KeyPointError proxy, whose
+figures table has one row (process 0's; before 2026-11-28, one per process). The
 fetched output goes to the .npz file given as argument, in the format of
 TestMPISimplify.py, so CheckMPIOutputs.py compares it with the other runs.
 
@@ -64,6 +65,14 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
              "MeanDistanceSimplifiedToOriginal", "PointToPlaneMean", "NumberOfOriginalKeyPoints",
              "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
+# The figures table: one row in ParaView (the processes' tables gathered),
+# with the field data's figures: process 0 alone fills it.
+assert kpe.GetDataInformation(1).GetNumberOfRows() == 1, kpe.GetDataInformation(1).GetNumberOfRows()
+fetched = servermanager.Fetch(kpe, idx=1)
+assert fetched.GetNumberOfRows() == 1, fetched.GetNumberOfRows()
+for name in figures:
+    if name.startswith("KPE."):
+        assert fetched.GetColumnByName(name[4:]).GetValue(0) == figures[name], name
 order = np.lexsort(table[:, 2::-1].T)
 assert n == NS and figures["KPE.NumberOfSimplifiedPoints"] == NS, (n, figures)
 np.savez(sys.argv[1], table=table[order], names=list(figures), values=list(figures.values()),

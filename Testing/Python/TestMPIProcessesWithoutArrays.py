@@ -32,6 +32,10 @@ not at double precision), both clouds held by one process: every process
 takes the coordinates' precision of the whole cloud (double, as
 vtkASMSimplify does), so the original and simplified key points are a
 serial run's, more than none; a process without points used to take float.
+In each of these runs, the figures table (output 1) has one row over the
+processes, process 0's, with the field data's figures, and every process's
+table has the same 22 columns (until 2026-11-28 each process output a row,
+so ParaView showed one per process).
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -190,6 +194,15 @@ def check_same_figures(kpe, serial, what):
     assert np.all(spread <= 1e-12), (what, dict(zip(names, every.T.tolist())))
     worst = np.abs(mine - expected) / np.maximum(1.0, np.abs(expected))
     assert np.all(worst <= 1e-9), (what, dict(zip(names, zip(mine, expected))))
+    # The table: one row over the processes, process 0's; the same columns
+    # on every process.
+    table = kpe.GetOutputDataObject(1)
+    rows = gathered(controller, [table.GetNumberOfRows()])
+    assert rows.tolist() == [1] + [0] * (size - 1), (what, rows)
+    assert [table.GetColumnName(c) for c in range(table.GetNumberOfColumns())] == names, what
+    if rank == 0:
+        row = np.array([table.GetValue(0, c).ToDouble() for c in range(len(names))])
+        assert np.array_equal(row, mine), what
     return dict(zip(names, mine))
 
 

@@ -206,6 +206,16 @@ for name in ("AKPE", "MKPE", "HausdorffDistance", "MeanDistanceOriginalToSimplif
              "MeanDistanceSimplifiedToOriginal", "PointToPlaneMean", "NumberOfOriginalKeyPoints",
              "NumberOfSimplifiedKeyPoints", "NumberOfOriginalPoints", "NumberOfSimplifiedPoints"):
     figures["KPE." + name] = mfd.GetArray(name).GetValue(0)
+# The figures table (output 1): one row over the processes, process 0's (the
+# other processes: the same columns, no row).
+figure_table = kpe.GetOutputDataObject(1)
+table_rows = vtkDoubleArray()
+controller.AllGatherV(numpy_to_vtk(np.array([figure_table.GetNumberOfRows()], dtype=np.float64),
+                                   deep=1), table_rows)
+assert vtk_to_numpy(table_rows).tolist() == [1] + [0] * (size - 1), vtk_to_numpy(table_rows)
+assert figure_table.GetNumberOfColumns() == 22, figure_table.GetNumberOfColumns()
+if rank == 0:
+    assert figure_table.GetColumnByName("AKPE").GetValue(0) == mfd.GetArray("AKPE").GetValue(0)
 # Every process reports the same global figures: each is reduced over the
 # processes (MKPE the largest error, AKPE the mean over every key point, the
 # counts summed), not taken of this process's share.
