@@ -152,7 +152,7 @@ public:
   /// How the per-cell weight w_c of Eq. 4 is chosen.
   enum WeightModes
   {
-    UNIFORM_WEIGHT = 0,          ///< w_c = 1: output density follows input density
+    UNIFORM_WEIGHT = 0,          ///< w_c = 1 (PAPER); FEATURE_PRESERVING: VariationBudget's
     SURFACE_VARIATION_WEIGHT = 1 ///< w_c = 1 + CurvatureWeight * sigma_c / mean(sigma)
   };
 
@@ -335,7 +335,10 @@ public:
    * FEATURE_PRESERVING: the ratio r = sigma_c / mean(sigma) past which the
    * VariationBudget weight grows as sqrt(VariationCap * r) instead of r
    * (unitless, >= 0; 0: no cap), so that a few cusps or spikes do not draw
-   * the samples of the smooth surface away; default 4.
+   * the samples of the smooth surface away; default 4. The
+   * SURFACE_VARIATION_WEIGHT budget weight is not capped; the final Lloyd
+   * iterations' weights (LloydVariationWeight) count min(VariationCap, r)
+   * with either WeightMode.
    */
   vtkSetClampMacro(VariationCap, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(VariationCap, double);
@@ -529,8 +532,10 @@ public:
 
   ///@{
   /**
-   * Seed of the random choice among key points when a cell's budget is
-   * smaller than its number of key points (§3.3); default 1.
+   * PAPER mode: seed of the random choice among key points when a cell's
+   * budget is smaller than its number of key points (§3.3); default 1.
+   * FEATURE_PRESERVING makes no random choice (the most prominent key points
+   * first) and ignores it.
    */
   vtkSetMacro(RandomSeed, int);
   vtkGetMacro(RandomSeed, int);

@@ -10,15 +10,18 @@
  * vtkASMSimplify takes it; non-finite points are skipped with a warning.
  *
  * Key point error (paper §3.4): the key points of both clouds are found with
- * the rule of vtkASMSimplify (§3.2: per grid cell, PCA, the Alpha bands along
- * v2 clustered in the (v0, v1) plane, a key point per cluster centroid) on one
+ * the paper's rule, that of vtkASMSimplify's PAPER mode (§3.2: per grid cell,
+ * PCA, the Alpha bands along v2 clustered in the (v0, v1) plane, a key point
+ * per cluster centroid; not the default mode's validated extremes) on one
  * grid covering both clouds, whose cell edge is CellSize, or, when that is
- * <= 0, what vtkASMSimplify would choose for the simplified cloud's size
- * (SamplesPerCell). Each original key point is paired with the nearest key
- * point of the simplified cloud (its nearest point when the simplified cloud
- * has no key point). AKPE is the mean (Eq. 1) and MKPE the maximum (Eq. 2)
- * of the pair distances: Euclidean by default, squared (the paper's Eq. 3 as
- * printed) with DistanceMeasure = SQUARED_DISTANCE.
+ * <= 0, vtkASMSimplify's automatic size for the simplified cloud's size at
+ * SamplesPerCell samples per cell (the default 8: its PAPER mode's grid; 4:
+ * its default mode's, FeatureSamplesPerCell). Each original key point is
+ * paired with the nearest key point of the simplified cloud (its nearest
+ * point when the simplified cloud has no key point). AKPE is the mean
+ * (Eq. 1) and MKPE the maximum (Eq. 2) of the pair distances: Euclidean by
+ * default, squared (the paper's Eq. 3 as printed) with DistanceMeasure =
+ * SQUARED_DISTANCE.
  *
  * The measures the field uses, so ASM can be compared with a voxel grid or
  * random sampling on equal terms: the symmetric Hausdorff distance between
@@ -84,8 +87,8 @@ public:
 
   ///@{
   /**
-   * Partition threshold of the key point rule, as in vtkASMSimplify
-   * (fraction of a cell's extent along v2, [0, 0.5]); default 1/8.
+   * Partition threshold of the key point rule, as in vtkASMSimplify's PAPER
+   * mode (fraction of a cell's extent along v2, [0, 0.5]); default 1/8.
    */
   vtkSetClampMacro(Alpha, double, 0.0, 0.5);
   vtkGetMacro(Alpha, double);
@@ -94,7 +97,8 @@ public:
   ///@{
   /**
    * Edge of the grid cells for the key points, in data units; <= 0 (default)
-   * sizes it as vtkASMSimplify does for the simplified cloud's point count.
+   * sizes it as vtkASMSimplify's automatic size does for the simplified
+   * cloud's point count at SamplesPerCell samples per cell.
    */
   vtkSetMacro(CellSize, double);
   vtkGetMacro(CellSize, double);
@@ -103,7 +107,8 @@ public:
   ///@{
   /**
    * Samples per non-empty cell assumed by the automatic cell size (points,
-   * >= 1); default 8, as in vtkASMSimplify.
+   * >= 1); default 8, vtkASMSimplify's SamplesPerCell, which gives its PAPER
+   * mode's grid (4, its FeatureSamplesPerCell, gives its default mode's).
    */
   vtkSetClampMacro(SamplesPerCell, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SamplesPerCell, double);
