@@ -128,10 +128,15 @@ int vtkKeyPointError::RequestData(
       << "Needs two point sets: the original (port 0) and a simplified cloud (port 1).");
     return 0;
   }
-  if (!std::isfinite(this->CellSize))
+  const std::pair<const char*, double> parameters[] = { { "Alpha", this->Alpha },
+    { "CellSize", this->CellSize }, { "SamplesPerCell", this->SamplesPerCell } };
+  for (const auto& parameter : parameters)
   {
-    vtkErrorMacro(<< "CellSize is not a finite number (" << this->CellSize << ").");
-    return 1;
+    if (!std::isfinite(parameter.second)) // (a clamped setter lets NaN through)
+    {
+      vtkErrorMacro(<< parameter.first << " is not a finite number (" << parameter.second << ").");
+      return 1;
+    }
   }
   const Cloud orig(original);
   const Cloud simp(simplified);
@@ -170,19 +175,20 @@ int vtkKeyPointError::RequestData(
 
   asmcore::ComparisonOptions options;
   options.Rule.Alpha = this->Alpha;
-  // The coordinates' precision, of the whole original cloud (as
-  // vtkASMSimplify takes it): double when any process holds double points.
-  // A process without points (an empty piece, a composite whose leaves
-  // are empty here: no vtkPoints at all) has no say.
+  // The coordinates' precision, of the whole original cloud, as
+  // vtkASMSimplify takes it (asmvtk::CoordinateEpsilon: a double's when any
+  // process holds double values that a float cannot hold). A process without
+  // points (an empty piece, a composite whose leaves are empty here: no
+  // vtkPoints at all) has no say.
   vtkPoints* originalPoints = original->GetPoints();
-  bool doublePoints = originalPoints && original->GetNumberOfPoints() > 0 &&
-    originalPoints->GetDataType() == VTK_DOUBLE;
+  double coordinateEpsilon = originalPoints && original->GetNumberOfPoints() > 0
+    ? asmvtk::CoordinateEpsilon(originalPoints)
+    : std::numeric_limits<float>::epsilon();
   if (distributed)
   {
-    doublePoints = comm.Max(doublePoints ? 1.0 : 0.0) > 0.0;
+    coordinateEpsilon = -comm.Max(-coordinateEpsilon);
   }
-  options.Rule.CoordinateEpsilon =
-    doublePoints ? std::numeric_limits<double>::epsilon() : std::numeric_limits<float>::epsilon();
+  options.Rule.CoordinateEpsilon = coordinateEpsilon;
   options.CellSize = this->CellSize;
   options.SamplesPerCell = this->SamplesPerCell;
   options.Measure = this->DistanceMeasure == SQUARED_DISTANCE

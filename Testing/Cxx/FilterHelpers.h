@@ -3,6 +3,7 @@
 #ifndef asm_FilterHelpers_h
 #define asm_FilterHelpers_h
 
+#include "FeatureShapes.h"
 #include "TestHelpers.h"
 
 #include "vtkASMSimplify.h"
@@ -19,6 +20,8 @@
 #include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <string>
@@ -47,6 +50,38 @@ inline vtkSmartPointer<vtkPolyData> ToPolyData(const Cloud& c, int type = VTK_DO
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   return pd;
+}
+
+/// The points of `c` rounded to floats, in a double array (as an upstream
+/// filter that widens float points gives them). (Through a float array: GCC
+/// 12's -O3 may drop a double -> float -> double rounding done in registers.)
+inline vtkSmartPointer<vtkPolyData> FloatsInDoubles(const Cloud& c)
+{
+  vtkSmartPointer<vtkPolyData> floats = ToPolyData(c, VTK_FLOAT);
+  vtkNew<vtkPoints> widened;
+  widened->SetDataTypeToDouble();
+  widened->SetNumberOfPoints(floats->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < floats->GetNumberOfPoints(); ++i)
+  {
+    widened->SetPoint(i, floats->GetPoint(i));
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(widened);
+  return pd;
+}
+
+/// A box (FeatureShapes.h's Box) turned so that the float rounding of its
+/// flat faces is off their planes.
+inline Cloud TurnedBox(std::size_t n)
+{
+  Cloud c = Box(n).Points;
+  const Eigen::Matrix3d turn =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    Eigen::Map<Eigen::Vector3d>(c.data() + i) = turn * Eigen::Vector3d(c[i], c[i + 1], c[i + 2]);
+  }
+  return c;
 }
 
 /// The same points, in the same order, bit for bit.

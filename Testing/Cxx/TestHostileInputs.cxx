@@ -237,27 +237,13 @@ TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
 {
   // A box, turned so that its flat faces' float rounding is off the plane,
   // and a few NaN points; as floats, and as those floats in a double array.
-  asmtest::Cloud c = asmtest::Box(20000).Points;
-  const Eigen::Matrix3d turn =
-    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
-  for (std::size_t i = 0; i < c.size(); i += 3)
-  {
-    Eigen::Map<Eigen::Vector3d>(c.data() + i) = turn * Eigen::Vector3d(c[i], c[i + 1], c[i + 2]);
-  }
+  asmtest::Cloud c = asmtest::TurnedBox(20000);
   for (int i = 0; i < 5; ++i)
   {
     asmtest::Add(c, std::nan(""), 0.0, 0.0);
   }
   vtkSmartPointer<vtkPolyData> floats = ToPolyData(c, VTK_FLOAT);
-  vtkNew<vtkPoints> widened;      // (through the float array: GCC 12's -O3 may drop
-  widened->SetDataTypeToDouble(); // a double -> float -> double rounding in registers)
-  widened->SetNumberOfPoints(floats->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < floats->GetNumberOfPoints(); ++i)
-  {
-    widened->SetPoint(i, floats->GetPoint(i));
-  }
-  vtkNew<vtkPolyData> doubles;
-  doubles->SetPoints(widened);
+  vtkSmartPointer<vtkPolyData> doubles = asmtest::FloatsInDoubles(c);
   ASSERT_NE(doubles->GetPoint(1)[0], c[3]) << "rounded to float";
   for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
   {

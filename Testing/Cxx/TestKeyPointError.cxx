@@ -313,6 +313,32 @@ TEST(KeyPointError, BadInputs)
     }
     EXPECT_EQ(run.Figure("NumberOfSimplifiedPoints"), 200.0);
   }
+  // A NaN parameter (the clamped setters let NaN through): an error naming
+  // it and an empty output.
+  using Setter = void (vtkKeyPointError::*)(double);
+  const std::pair<const char*, Setter> parameters[] = { { "Alpha", &vtkKeyPointError::SetAlpha },
+    { "CellSize", &vtkKeyPointError::SetCellSize },
+    { "SamplesPerCell", &vtkKeyPointError::SetSamplesPerCell } };
+  for (const auto& [name, set] : parameters)
+  {
+    ErrorRun run;
+    (run.Filter.GetPointer()->*set)(std::nan(""));
+    EXPECT_EQ(run.Execute(sphere, ToPolyData(Sphere(200, 1.0, 5)))->GetNumberOfPoints(), 0);
+    EXPECT_EQ(run.Messages->Errors, 1) << name;
+    EXPECT_NE(run.Messages->LastMessage.find(name), std::string::npos) << run.Messages->LastMessage;
+  }
+  // Float values in a double array: the figures of the float array (the
+  // same key point rule: the coordinates' precision is a float's).
+  const Cloud box = TurnedBox(20000);
+  vtkSmartPointer<vtkPolyData> floats = ToPolyData(box, VTK_FLOAT);
+  vtkSmartPointer<vtkPolyData> doubles = FloatsInDoubles(box);
+  auto reduced = ToPolyData(Cloud(box.begin(), box.begin() + 3 * 1000));
+  ErrorRun fromFloats, fromDoubles;
+  fromFloats.Execute(floats, reduced);
+  fromDoubles.Execute(doubles, reduced);
+  EXPECT_EQ(fromFloats.Figure("NumberOfOriginalKeyPoints"),
+    fromDoubles.Figure("NumberOfOriginalKeyPoints"));
+  EXPECT_EQ(fromFloats.Figure("MKPE"), fromDoubles.Figure("MKPE"));
 }
 
 TEST(Curvature, ASMOutputOnASphereHasMeanCurvatureOneOverR)
