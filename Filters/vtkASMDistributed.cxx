@@ -74,9 +74,9 @@ void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::Poin
 {
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
     input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  if (!ghosts)
+  if (!ghosts || ghosts->GetNumberOfTuples() < input->GetNumberOfPoints())
   {
-    return;
+    return; // (a short ghost array is not read: it is dropped from the output)
   }
   asmcore::PointIds kept;
   kept.reserve(ids.size());

@@ -398,8 +398,9 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
 void AddFetchedArrays(vtkPointData* fetchedPD, const LocalCloud& cloud, vtkPointData* outPD);
 
 /// Drops from `ids` the points flagged as duplicates of another process's
-/// points (vtkGhostType & DUPLICATEPOINT): `ids` then views `list`, which
-/// holds the others. Without a ghost array nothing changes (no copy).
+/// or piece's points (vtkGhostType & DUPLICATEPOINT): `ids` then views
+/// `list`, which holds the others. Without a ghost array (or with one
+/// shorter than the points) nothing changes (no copy).
 void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list);
 } // namespace asmvtk
 

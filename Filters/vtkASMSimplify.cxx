@@ -140,28 +140,30 @@ int vtkASMSimplify::RequestData(
     ? asmvtk::PrepareCoordinates(
         input->GetPoints(), coordinateCopy, idList, ids, threads, floatsInPlace)
     : asmcore::Coordinates();
+  vtkIdType skipped = numberOfPoints - static_cast<vtkIdType>(ids.size());
+  // Duplicate ghost points (another piece's, in a partitioned dataset) are
+  // not this input's to simplify.
+  asmvtk::DropDuplicateGhosts(input, ids, idList);
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
-  vtkIdType skipped = numberOfPoints - valid;
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
   double coordinateEpsilon = numberOfPoints > 0 ? asmvtk::CoordinateEpsilon(input->GetPoints())
                                                 : std::numeric_limits<float>::epsilon();
   if (distributed)
   {
-    asmvtk::DropDuplicateGhosts(input, ids, idList);
     valid = comm.Sum(static_cast<Index>(ids.size()));
     skipped = comm.Sum(static_cast<Index>(skipped));
     pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
     coordinateEpsilon = -comm.Max(-coordinateEpsilon); // a double's if any process needs it
-    if (valid == 0)
-    {
-      vtkWarningMacro(<< "The input has no points: the output is empty.");
-      return 1;
-    }
   }
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped
                     << " input points have NaN or infinite coordinates; they are ignored.");
+  }
+  if (valid == 0)
+  {
+    vtkWarningMacro(<< "The input has no points to simplify: the output is empty.");
+    return 1;
   }
   vtkIdType target = this->TargetMode == OUTPUT_FRACTION
     ? static_cast<vtkIdType>(std::llround(this->OutputFraction * static_cast<double>(valid)))

@@ -266,6 +266,63 @@ TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
   }
 }
 
+// A piece of a partitioned dataset with its ghost points (another piece's,
+// flagged DUPLICATEPOINT in vtkGhostType): they are not simplified here, in a
+// serial run as in an MPI run. A ghost array shorter than the points is not
+// read (it is dropped with a warning, as any short array).
+TEST(HostileInputs, AnotherPiecesGhostPointsAreNotSimplified)
+{
+  const asmtest::Cloud sphere = asmtest::Sphere(3000, 1.0, 17);
+  asmtest::Cloud c = sphere;
+  const asmtest::Cloud halo = asmtest::Sphere(300, 1.02, 18); // the ghosts
+  c.insert(c.end(), halo.begin(), halo.end());
+  for (const bool shortGhosts : { false, true })
+  {
+    vtkSmartPointer<vtkPolyData> input = ToPolyData(c);
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    ghosts->SetNumberOfTuples(shortGhosts ? 1 : 3300);
+    for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples(); ++i)
+    {
+      ghosts->SetValue(i, i < 3000 ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+    }
+    input->GetPointData()->AddArray(ghosts);
+    vtkNew<vtkIntArray> piece;
+    piece->SetName("Piece");
+    for (vtkIdType i = 0; i < 3300; ++i)
+    {
+      piece->InsertNextValue(i < 3000 ? 0 : 1);
+    }
+    input->GetPointData()->AddArray(piece);
+    for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
+    {
+      FilterRun run;
+      run.Filter->SetMode(mode);
+      run.Filter->SetOutputFraction(0.1);
+      vtkPolyData* out = run.Execute(input);
+      const std::string what = std::string(shortGhosts ? "short ghost array" : "ghosts") +
+        ", mode " + std::to_string(mode);
+      ASSERT_EQ(out->GetNumberOfPoints(), shortGhosts ? 330 : 300) << what;
+      EXPECT_EQ(run.Messages->Warnings, shortGhosts ? 1 : 0) << what;
+      vtkDataArray* pieces = out->GetPointData()->GetArray("Piece");
+      double fromGhosts = 0.0;
+      for (vtkIdType s = 0; s < out->GetNumberOfPoints(); ++s)
+      {
+        fromGhosts += pieces->GetTuple1(s);
+      }
+      if (shortGhosts)
+      {
+        EXPECT_GT(fromGhosts, 0.0) << what;
+      }
+      else
+      {
+        EXPECT_EQ(fromGhosts, 0.0) << what;
+        EXPECT_EQ(out->GetPointData()->GetArray("ClusterSize")->GetRange()[0] >= 1.0, true);
+      }
+    }
+  }
+}
+
 TEST(HostileInputs, OnePercentFarOutliers)
 {
   // 1 % of the points scattered up to 1 km from a 1 m sphere: the sphere
