@@ -99,6 +99,12 @@ int vtkKeyPointError::FillOutputPortInformation(int port, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
+vtkTable* vtkKeyPointError::GetFiguresOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
 int vtkKeyPointError::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -62,6 +62,7 @@
 class vtkAlgorithmOutput;
 class vtkDataObject;
 class vtkMultiProcessController;
+class vtkTable;
 
 class VTKASMFILTERS_EXPORT vtkKeyPointError : public vtkPolyDataAlgorithm
 {
@@ -84,6 +85,12 @@ public:
   void SetSimplifiedConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetSimplifiedData(vtkDataObject* data) { this->SetInputData(1, data); }
   ///@}
+
+  /**
+   * The figures table of output port 1 (GetOutput(1) is null there: it casts
+   * to vtkPolyData, the type of port 0).
+   */
+  vtkTable* GetFiguresOutput();
 
   ///@{
   /**

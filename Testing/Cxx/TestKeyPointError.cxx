@@ -34,7 +34,8 @@ struct ErrorRun : ObservedFilter<vtkKeyPointError>
   }
   double Figure(const char* name)
   {
-    auto* table = vtkTable::SafeDownCast(this->Filter->GetOutputDataObject(1));
+    vtkTable* table = this->Filter->GetFiguresOutput();
+    EXPECT_EQ(table, this->Filter->GetOutputDataObject(1));
     vtkAbstractArray* column = table ? table->GetColumnByName(name) : nullptr;
     return column ? column->GetVariantValue(0).ToDouble() : std::nan("");
   }
