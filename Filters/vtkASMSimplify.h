@@ -311,10 +311,11 @@ public:
   /**
    * FEATURE_PRESERVING: mean number of output samples per non-empty grid
    * cell aimed at by the automatic cell size in this mode (SamplesPerCell is
-   * PAPER mode's; <= 0: SamplesPerCell); default 4. Finer cells let the
-   * budget follow the surface variation (VariationBudget) more closely.
+   * PAPER mode's; 0: SamplesPerCell), clamped to >= 0; default 4. Finer
+   * cells let the budget follow the surface variation (VariationBudget) more
+   * closely.
    */
-  vtkSetMacro(FeatureSamplesPerCell, double);
+  vtkSetClampMacro(FeatureSamplesPerCell, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FeatureSamplesPerCell, double);
   ///@}
 
