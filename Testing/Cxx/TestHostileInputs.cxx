@@ -179,6 +179,32 @@ TEST(HostileInputs, HalfOfThePointsExactDuplicates)
   }
 }
 
+// Double coordinates keep a double's precision: a relief far below a float's
+// rounding at their magnitude (1e-3 at 1e5) still gives key points.
+TEST(HostileInputs, DoubleCoordinatesKeepReliefBelowAFloatsRounding)
+{
+  Cloud c;
+  for (int i = 0; i < 40; ++i)
+  {
+    for (int j = 0; j < 40; ++j)
+    {
+      const double bump = i == 20 && j == 20 ? 1e-3 : 0.0;
+      asmtest::Add(c, 1e5 + i, 1e5 + j, 1e5 + bump);
+    }
+  }
+  FilterRun run;
+  run.Filter->SetModeToPaper();
+  run.Count(160);
+  vtkPolyData* out = run.Execute(ToPolyData(c));
+  ASSERT_EQ(out->GetNumberOfPoints(), 160);
+  EXPECT_GE(FieldValue(out, "NumberOfKeyPoints"), 1.0);
+  FilterRun flat; // the same without the bump: an exact plane, no key points
+  flat.Filter->SetModeToPaper();
+  flat.Count(160);
+  c[3 * (20 * 40 + 20) + 2] = 1e5;
+  EXPECT_EQ(FieldValue(flat.Execute(ToPolyData(c)), "NumberOfKeyPoints"), 0.0);
+}
+
 TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
 {
   // A 500 m sphere 1e7 m from the origin, in float (UTM-like): coordinates
