@@ -16,7 +16,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 
-from asm_mpi_setup import controller_and_bunny, gathered
+from asm_mpi_setup import controller_and_bunny, gathered, simplified
 from asmvtk import vtkASMSimplify
 
 NS = 300
@@ -50,16 +50,8 @@ pd.AddArray(names)
 
 for mode in (vtkASMSimplify.PAPER, vtkASMSimplify.FEATURE_PRESERVING):
     warnings = []
-    asm = vtkASMSimplify()
-    asm.AddObserver("WarningEvent", lambda caller, event: warnings.append(event))
-    asm.SetInputData(piece)
-    asm.SetMode(mode)
-    asm.SetTargetModeToNumberOfOutputPoints()
-    asm.SetNumberOfOutputPoints(NS)
-    asm.Update()
-    out = asm.GetOutput()
+    asm, out, counts = simplified(controller, piece, mode, NS, warnings)
     local = out.GetNumberOfPoints()
-    counts = gathered(controller, [local])
     assert counts.sum() == NS, (mode, counts)
     opd = out.GetPointData()
     for name in ("Partial", "Shape"):

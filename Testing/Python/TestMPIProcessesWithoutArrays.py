@@ -44,7 +44,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_DOUBLE, VTK_UNSIGNED_CHAR, vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet, vtkPolyData
 
-from asm_mpi_setup import controller_and_bunny, gathered
+from asm_mpi_setup import controller_and_bunny, gathered, simplified
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
 NS = 300
@@ -96,15 +96,8 @@ def sorted_points(points):
 
 def check_simplify(holder, composite, mode):
     data = input_of(holder, composite)
-    asm = vtkASMSimplify()
-    asm.SetInputData(data)
-    asm.SetMode(mode)
-    asm.SetTargetModeToNumberOfOutputPoints()
-    asm.SetNumberOfOutputPoints(NS)
-    asm.Update()
-    out = asm.GetOutput()
+    asm, out, counts = simplified(controller, data, mode, NS)
     local = out.GetNumberOfPoints()
-    counts = gathered(controller, [local])
     assert counts.sum() == NS, (holder, composite, mode, counts)
     # The processes without input points own cells and output samples.
     assert np.count_nonzero(counts) > 1, (holder, composite, mode, counts)

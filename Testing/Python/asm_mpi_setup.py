@@ -33,3 +33,22 @@ def gathered(controller, values):
     received = vtkDoubleArray()
     controller.AllGatherV(numpy_to_vtk(np.asarray(values, dtype=np.float64), deep=1), received)
     return vtk_to_numpy(received)
+
+
+def simplified(controller, data, mode, count, warnings=None):
+    """vtkASMSimplify of `data` to `count` points in `mode` on every process:
+    the filter, its output here and every process's output count, in process
+    order (their sum must be `count`). Warning events go to `warnings` (a
+    list) when given."""
+    from asmvtk import vtkASMSimplify
+
+    asm = vtkASMSimplify()
+    if warnings is not None:
+        asm.AddObserver("WarningEvent", lambda caller, event: warnings.append(event))
+    asm.SetInputData(data)
+    asm.SetMode(mode)
+    asm.SetTargetModeToNumberOfOutputPoints()
+    asm.SetNumberOfOutputPoints(count)
+    asm.Update()
+    out = asm.GetOutput()
+    return asm, out, gathered(controller, [out.GetNumberOfPoints()])
