@@ -13,6 +13,7 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMP.h" // VTK_SMP_ENABLE_*: the backends this VTK was built with
@@ -23,6 +24,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -82,6 +84,38 @@ inline Cloud TurnedBox(std::size_t n)
     Eigen::Map<Eigen::Vector3d>(c.data() + i) = turn * Eigen::Vector3d(c[i], c[i + 1], c[i + 2]);
   }
   return c;
+}
+
+/// Asserts that every output point is finite.
+inline void ExpectAllFinite(vtkPolyData* out)
+{
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) << i;
+  }
+}
+
+// Largest | |p - centre| - radius | over the output points (with KeyPoint ==
+// 1 only when keysOnly).
+inline double SphereDeviation(
+  vtkPolyData* out, const double centre[3], double radius, bool keysOnly)
+{
+  auto* keys = out->GetPointData()->GetArray("KeyPoint");
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    if (keysOnly && keys->GetTuple1(i) != 1.0)
+    {
+      continue;
+    }
+    double p[3];
+    out->GetPoint(i, p);
+    const double r = std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    worst = std::max(worst, std::abs(r - radius));
+  }
+  return worst;
 }
 
 /// The same points, in the same order, bit for bit.

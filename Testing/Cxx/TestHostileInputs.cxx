@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Messy scan data (README "Messy data"): NaN holes, exact duplicates,
-// georeferenced float coordinates, far outliers, one very dense cell, 64-bit
-// ids, extremely anisotropic bounds. Each gives exactly N_s sensible points.
+// Messy scan data (README "Messy data"): NaN holes, exact duplicates, far
+// outliers, one very dense cell, 64-bit ids, extremely anisotropic bounds,
+// short arrays, another piece's ghost points. Each gives exactly N_s sensible
+// points. (Messy coordinates: TestCoordinates.cxx.)
 #include "FeatureShapes.h"
 #include "FilterHelpers.h"
 
@@ -31,42 +32,11 @@
 #include <type_traits>
 
 using asmtest::Cloud;
+using asmtest::ExpectAllFinite;
 using asmtest::FieldValue;
 using asmtest::FilterRun;
+using asmtest::SphereDeviation;
 using asmtest::ToPolyData;
-
-namespace
-{
-void ExpectAllFinite(vtkPolyData* out)
-{
-  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    out->GetPoint(i, p);
-    ASSERT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) << i;
-  }
-}
-
-// Largest | |p - centre| - radius | over the output points (with KeyPoint ==
-// 1 only when keysOnly).
-double SphereDeviation(vtkPolyData* out, const double centre[3], double radius, bool keysOnly)
-{
-  auto* keys = out->GetPointData()->GetArray("KeyPoint");
-  double worst = 0.0;
-  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-  {
-    if (keysOnly && keys->GetTuple1(i) != 1.0)
-    {
-      continue;
-    }
-    double p[3];
-    out->GetPoint(i, p);
-    const double r = std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
-    worst = std::max(worst, std::abs(r - radius));
-  }
-  return worst;
-}
-} // namespace
 
 TEST(HostileInputs, NaNAndInfinitePointsAreSkippedWarnedAndCounted)
 {
@@ -176,119 +146,6 @@ TEST(HostileInputs, HalfOfThePointsExactDuplicates)
     EXPECT_EQ(total, 20000.0) << "every input point is in exactly one cluster";
     EXPECT_EQ(distinct.size(), 500u) << "no sample is spent twice on one position";
     EXPECT_LT(SphereDeviation(out, centre, 1.0, false), 0.05);
-  }
-}
-
-// Double coordinates keep a double's precision: a relief far below a float's
-// rounding at their magnitude (1e-3 at 1e5) still gives key points.
-TEST(HostileInputs, DoubleCoordinatesKeepReliefBelowAFloatsRounding)
-{
-  Cloud c;
-  for (int i = 0; i < 40; ++i)
-  {
-    for (int j = 0; j < 40; ++j)
-    {
-      const double bump = i == 20 && j == 20 ? 1e-3 : 0.0;
-      asmtest::Add(c, 1e5 + i, 1e5 + j, 1e5 + bump);
-    }
-  }
-  FilterRun run;
-  run.Filter->SetModeToPaper();
-  run.Count(160);
-  vtkPolyData* out = run.Execute(ToPolyData(c));
-  ASSERT_EQ(out->GetNumberOfPoints(), 160);
-  EXPECT_GE(FieldValue(out, "NumberOfKeyPoints"), 1.0);
-  FilterRun flat; // the same without the bump: an exact plane, no key points
-  flat.Filter->SetModeToPaper();
-  flat.Count(160);
-  c[3 * (20 * 40 + 20) + 2] = 1e5;
-  EXPECT_EQ(FieldValue(flat.Execute(ToPolyData(c)), "NumberOfKeyPoints"), 0.0);
-}
-
-TEST(HostileInputs, GeoreferencedFloatCloudFarFromTheOrigin)
-{
-  // A 500 m sphere 1e7 m from the origin, in float (UTM-like): coordinates
-  // are rounded to 1 m there. The result must be as sensible as at the
-  // origin: exact count, points and key points on the surface (within the
-  // input's rounding), key points still found, no loss of precision beyond
-  // the input's own.
-  const double radius = 500.0;
-  const double far[3] = { 1.0e7, 1.0e7, 100.0 };
-  const double origin[3] = { 0, 0, 0 };
-  const Cloud atOrigin = asmtest::Sphere(50000, radius, 21);
-  Cloud shifted = atOrigin;
-  for (std::size_t i = 0; i < shifted.size(); ++i)
-  {
-    shifted[i] += far[i % 3];
-  }
-  FilterRun reference;
-  reference.Count(1000);
-  vtkPolyData* ref = reference.Execute(ToPolyData(atOrigin, VTK_FLOAT));
-  const double referenceKeys = FieldValue(ref, "NumberOfKeyPoints");
-
-  FilterRun run;
-  run.Count(1000);
-  vtkPolyData* out = run.Execute(ToPolyData(shifted, VTK_FLOAT));
-  ASSERT_EQ(out->GetNumberOfPoints(), 1000);
-  ExpectAllFinite(out);
-  EXPECT_EQ(out->GetPoints()->GetDataType(), VTK_FLOAT);
-  // The centroids' sagitta at the origin; far away, + 1 m input rounding
-  // + 1 m output rounding.
-  const double sagitta = SphereDeviation(ref, origin, radius, false);
-  EXPECT_LT(sagitta, 5.0);
-  EXPECT_LT(SphereDeviation(out, far, radius, false), sagitta + 2.0);
-  EXPECT_LT(SphereDeviation(out, far, radius, true), sagitta + 2.0);
-  // (A smooth sphere: at the origin the default mode finds no key points
-  // (since FeatureSamplesPerCell 4 and VariationBudget), and far away the
-  // 1 m rounding must not take them away where there are some.)
-  EXPECT_GE(FieldValue(out, "NumberOfKeyPoints"), 0.5 * referenceKeys);
-  EXPECT_LT(FieldValue(out, "MKPE"), 0.1 * radius);
-  EXPECT_NEAR(
-    FieldValue(out, "CellSize"), FieldValue(ref, "CellSize"), 0.25 * FieldValue(ref, "CellSize"));
-
-  // Double output points keep the computed positions (no float rounding).
-  FilterRun precise;
-  precise.Count(1000);
-  precise.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  vtkPolyData* fine = precise.Execute(ToPolyData(shifted, VTK_FLOAT));
-  EXPECT_EQ(fine->GetPoints()->GetDataType(), VTK_DOUBLE);
-  EXPECT_LT(SphereDeviation(fine, far, radius, false), sagitta + 1.0);
-}
-
-// Float coordinates in a double array (an upstream filter that converts its
-// points, such as vtkRedistributeDataSetFilter, gives them) carry a float's
-// rounding: the same output as the float array, so flat faces rounded to
-// float get no key points either way.
-TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
-{
-  // A box, turned so that its flat faces' float rounding is off the plane,
-  // and a few NaN points; as floats, and as those floats in a double array.
-  asmtest::Cloud c = asmtest::TurnedBox(20000);
-  for (int i = 0; i < 5; ++i)
-  {
-    asmtest::Add(c, std::nan(""), 0.0, 0.0);
-  }
-  vtkSmartPointer<vtkPolyData> floats = ToPolyData(c, VTK_FLOAT);
-  vtkSmartPointer<vtkPolyData> doubles = asmtest::FloatsInDoubles(c);
-  ASSERT_NE(doubles->GetPoint(1)[0], c[3]) << "rounded to float";
-  for (const int mode : { vtkASMSimplify::FEATURE_PRESERVING, vtkASMSimplify::PAPER })
-  {
-    vtkSmartPointer<vtkPolyData> outputs[2];
-    for (vtkPolyData* input : { floats.GetPointer(), doubles.GetPointer() })
-    {
-      FilterRun run;
-      run.Filter->SetMode(mode);
-      run.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-      run.Count(1000);
-      vtkSmartPointer<vtkPolyData>& out = outputs[input == doubles.GetPointer()];
-      out = vtkSmartPointer<vtkPolyData>::New();
-      out->ShallowCopy(run.Execute(input));
-    }
-    ASSERT_EQ(outputs[0]->GetNumberOfPoints(), 1000);
-    EXPECT_TRUE(asmtest::SamePoints(outputs[0], outputs[1])) << "mode " << mode;
-    EXPECT_EQ(
-      FieldValue(outputs[0], "NumberOfKeyPoints"), FieldValue(outputs[1], "NumberOfKeyPoints"))
-      << "mode " << mode;
   }
 }
 
@@ -613,75 +470,4 @@ TEST(HostileInputs, ShortArraysDoNotDecideAmongDuplicates)
       EXPECT_EQ(labels->GetTuple1(s), 0.0) << "mode " << mode << ", sample " << s;
     }
   }
-}
-
-TEST(HostileInputs, CoordinatesWhoseSquaresOverflow)
-{
-  // A sphere of radius 1e160: finite coordinates, but every squared
-  // distance overflows to infinity, so every distance comparison ties. Both
-  // modes must still give exactly N_s finite points (no crash, no read out
-  // of bounds under the sanitizers).
-  Cloud c = asmtest::Sphere(3000, 1.0, 5);
-  for (double& v : c)
-  {
-    v *= 1e160;
-  }
-  for (const bool paper : { false, true })
-  {
-    FilterRun run;
-    run.Count(150);
-    if (paper)
-    {
-      run.Filter->SetModeToPaper();
-    }
-    vtkPolyData* out = run.Execute(ToPolyData(c));
-    ASSERT_EQ(out->GetNumberOfPoints(), 150) << (paper ? "paper" : "default");
-    ExpectAllFinite(out);
-  }
-}
-
-// Points held as integers or in a split (structure-of-arrays) layout are
-// converted to doubles block by block: the same output as the same
-// coordinates in an ordinary double array (more points than one block).
-TEST(HostileInputs, IntegerAndSplitPointArraysGiveTheDoubleResult)
-{
-  const Cloud c = asmtest::Sphere(100000, 1000.0, 5); // radius 1000: integers keep the shape
-  const vtkIdType n = static_cast<vtkIdType>(c.size() / 3);
-  vtkNew<vtkDoubleArray> doubles;
-  vtkNew<vtkIntArray> integers;
-  vtkNew<vtkSOADataArrayTemplate<double>> split;
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(doubles),
-         static_cast<vtkDataArray*>(integers), static_cast<vtkDataArray*>(split) })
-  {
-    a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(n);
-  }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double rounded[3] = { std::round(c[3 * i]), std::round(c[3 * i + 1]),
-      std::round(c[3 * i + 2]) };
-    doubles->SetTuple(i, rounded);
-    integers->SetTuple(i, rounded);
-    split->SetTuple(i, rounded);
-  }
-  auto simplified = [&](vtkDataArray* coordinates) {
-    vtkNew<vtkPoints> points;
-    points->SetData(coordinates);
-    vtkNew<vtkPolyData> input;
-    input->SetPoints(points);
-    FilterRun run;
-    run.Filter->SetOutputFraction(0.05);
-    run.Filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-    vtkPolyData* out = run.Execute(input);
-    std::vector<double> xyz(static_cast<std::size_t>(3 * out->GetNumberOfPoints()));
-    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-    {
-      out->GetPoint(i, xyz.data() + 3 * i);
-    }
-    return xyz;
-  };
-  const std::vector<double> reference = simplified(doubles);
-  ASSERT_EQ(reference.size(), 3u * 5000u);
-  EXPECT_EQ(simplified(integers), reference);
-  EXPECT_EQ(simplified(split), reference);
 }
