@@ -189,18 +189,42 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   }
   if (curvatureNeighbors > 0)
   {
+    // Signed by the simplified normals, or else away from the centroid of
+    // the whole original cloud, as a serial run signs them (this process's
+    // points, owned and halo, have another centroid).
+    double centroid[3] = { 0.0, 0.0, 0.0 };
+    if (!haveNormals)
+    {
+      std::vector<double> sum(3, 0.0);
+      for (Index i : ids)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          sum[a] += xyz[3 * i + a];
+        }
+      }
+      comm.Sum(sum);
+      for (int a = 0; a < 3; ++a)
+      {
+        centroid[a] = sum[a] / static_cast<double>(out.OriginalPoints);
+      }
+    }
     std::vector<double> queries, orient;
     for (Index j : mineToMeasure)
     {
-      queries.insert(queries.end(), all.data() + 3 * j, all.data() + 3 * j + 3);
+      const double* q = all.data() + 3 * j;
+      queries.insert(queries.end(), q, q + 3);
       if (haveNormals)
       {
         orient.insert(orient.end(), allNormals.data() + 3 * j, allNormals.data() + 3 * j + 3);
       }
+      else
+      {
+        orient.insert(orient.end(), { q[0] - centroid[0], q[1] - centroid[1], q[2] - centroid[2] });
+      }
     }
     const auto estimates = asmcore::EstimateCurvature(oxyz, cloud.Ids(), localTree, queries.data(),
-      static_cast<Index>(mineToMeasure.size()), haveNormals ? orient.data() : nullptr,
-      curvatureNeighbors, execution);
+      static_cast<Index>(mineToMeasure.size()), orient.data(), curvatureNeighbors, execution);
     for (std::size_t m = 0; m < estimates.size(); ++m)
     {
       perPoint[2 * n + mineToMeasure[m]] = estimates[m].MeanCurvature;

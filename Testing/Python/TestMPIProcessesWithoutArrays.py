@@ -37,6 +37,12 @@ processes, process 0's, with the field data's figures, and every process's
 table has the same 22 columns (until 2026-11-28 each process output a row,
 so ParaView showed one per process).
 
+Two wavy sheets split along x over the processes, without normals: each
+simplified point's curvature is a serial run's, signed away from the whole
+original cloud's centroid (until 2026-11-28 each process signed the points it
+measured away from the centroid of its own part: a third of the signs
+differed).
+
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
 import numpy as np
@@ -234,10 +240,18 @@ def check_key_point_error(holder, composite, mode, data, asm, every):
     with_short = measure(data, short, warnings=warnings)
     without = measure(data, bare)
     assert len(warnings) == (1 if local > 1 else 0), (what, warnings)
+    # Without normals, each point's curvature is the serial run's: signed
+    # away from the whole original cloud's centroid (not from that of the
+    # part a process measures it on).
+    offset = int(gathered(controller, [local])[:rank].sum())
     for name in ("MeanCurvature", "NeighborhoodSurfaceVariation"):
         a = vtk_to_numpy(with_short.GetOutput().GetPointData().GetArray(name))
         b = vtk_to_numpy(without.GetOutput().GetPointData().GetArray(name))
         assert np.array_equal(a, b), (what, name)
+        expected = vtk_to_numpy(serial.GetOutput().GetPointData().GetArray(name))
+        expected = expected[offset:offset + local]
+        differ = np.flatnonzero(~np.isclose(b, expected, rtol=1e-9, atol=1e-12))
+        assert differ.size == 0, (what, name, differ.size, b[differ[:3]], expected[differ[:3]])
     if rank == 0:
         print("  key point error: %s" % {k: figures[k] for k in ("AKPE", "MKPE",
                                                                 "NumberOfOriginalKeyPoints")})
@@ -263,6 +277,31 @@ def check_precision(holder):
                  figures["NumberOfSimplifiedKeyPoints"]))
 
 
+def check_curvature_sign():
+    """Two wavy sheets, split along x over the processes, without normals:
+    each simplified point's curvature is the serial run's, signed away from
+    the whole original cloud's centroid (a process used to sign the points it
+    measures away from the centroid of its own part, which near a sheet's
+    far end lies on the other side of the sheet's normal)."""
+    u, v = np.meshgrid(np.linspace(0.0, 4.0, 160), np.linspace(0.0, 1.0, 40), indexing="ij")
+    u, v = u.ravel(), v.ravel()
+    wave = 0.2 * np.sin(3.0 * u)
+    sheets = np.vstack([np.column_stack([u, v, wave]), np.column_stack([u, v, 1.0 + wave])])
+    reduced = sheets[::7]
+    mine = lambda p: p[np.floor(p[:, 0] * size / 4.0001).astype(int) == rank]
+    kpe = measure(polydata_of(mine(sheets)), polydata_of(mine(reduced)))
+    local = kpe.GetOutput().GetNumberOfPoints()
+    offset = int(gathered(controller, [local])[:rank].sum())
+    every = gathered(controller, mine(reduced).ravel()).reshape(-1, 3)
+    serial = measure(polydata_of(sheets), polydata_of(every), controller=None)
+    got = vtk_to_numpy(kpe.GetOutput().GetPointData().GetArray("MeanCurvature"))
+    expected = vtk_to_numpy(serial.GetOutput().GetPointData().GetArray("MeanCurvature"))
+    expected = expected[offset:offset + local]
+    differ = np.flatnonzero(~np.isclose(got, expected, rtol=1e-9, atol=1e-12))
+    assert differ.size == 0, (rank, differ.size, local, got[differ[:3]], expected[differ[:3]])
+
+
+check_curvature_sign()
 for holder in (0, size - 1):
     for composite in (False, True):
         for mode in (vtkASMSimplify.PAPER, vtkASMSimplify.FEATURE_PRESERVING):
