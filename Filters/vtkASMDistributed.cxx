@@ -70,6 +70,25 @@ asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcor
 }
 
 //------------------------------------------------------------------------------
+void GlobalCentroid(const Communication& comm, const double* xyz, asmcore::IdView ids, Index total,
+  double centroid[3])
+{
+  std::vector<double> sum(3, 0.0);
+  for (Index id : ids)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      sum[a] += xyz[3 * id + a];
+    }
+  }
+  comm.Sum(sum);
+  for (int a = 0; a < 3; ++a)
+  {
+    centroid[a] = total > 0 ? sum[a] / static_cast<double>(total) : 0.0;
+  }
+}
+
+//------------------------------------------------------------------------------
 void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list)
 {
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
@@ -185,19 +204,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   const Index total = comm.Sum(static_cast<Index>(ids.size()));
   const asmcore::Bounds bounds = comm.Union(asmcore::ComputeBounds(xyz, ids, execution));
   share.Diagonal = bounds.Diagonal();
-  std::vector<double> centroid(3, 0.0);
-  for (Index id : ids)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      centroid[a] += xyz[3 * id + a];
-    }
-  }
-  comm.Sum(centroid);
-  for (int a = 0; a < 3; ++a)
-  {
-    share.Centroid[a] = total > 0 ? centroid[a] / static_cast<double>(total) : 0.0;
-  }
+  GlobalCentroid(comm, xyz, ids, total, share.Centroid);
 
   // 1. One global grid; the automatic size counts distinct cells globally.
   double cellSize = parameters.CellSize;

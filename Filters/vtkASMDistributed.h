@@ -397,6 +397,12 @@ bool FetchRepresentativeValues(const Communication& comm, vtkPointData* inputPD,
 /// the input's order (cloud.ArrayOrder), as on the serial path.
 void AddFetchedArrays(vtkPointData* fetchedPD, const LocalCloud& cloud, vtkPointData* outPD);
 
+/// The centroid of the points xyz[3 id], id in `ids`, over every process
+/// (`total`: their number over the processes; 0 gives the origin). Each
+/// process sums its own in id order, then the sums are added.
+void GlobalCentroid(const Communication& comm, const double* xyz, asmcore::IdView ids, Index total,
+  double centroid[3]);
+
 /// Drops from `ids` the points flagged as duplicates of another process's
 /// or piece's points (vtkGhostType & DUPLICATEPOINT): `ids` then views
 /// `list`, which holds the others. Without a ghost array (or with one

@@ -195,19 +195,7 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
     double centroid[3] = { 0.0, 0.0, 0.0 };
     if (!haveNormals)
     {
-      std::vector<double> sum(3, 0.0);
-      for (Index i : ids)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          sum[a] += xyz[3 * i + a];
-        }
-      }
-      comm.Sum(sum);
-      for (int a = 0; a < 3; ++a)
-      {
-        centroid[a] = sum[a] / static_cast<double>(out.OriginalPoints);
-      }
+      GlobalCentroid(comm, xyz, ids, out.OriginalPoints, centroid);
     }
     std::vector<double> queries, orient;
     for (Index j : mineToMeasure)
