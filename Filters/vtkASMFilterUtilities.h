@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -158,10 +159,13 @@ inline void AdviseHugePages(void* data, std::size_t bytes)
 /// list), else a view of `idList`, which holds them. Doubles are used in
 /// place, and so are floats with `floatsInPlace` (the core widens them as it
 /// reads them); other types are converted into `copy` as doubles (not
-/// zero-filled first). Both passes run in parallel (vtkSMPTools) over fixed
-/// blocks: the result does not depend on the thread count.
+/// zero-filled first). `largest`: the largest |coordinate| of the finite
+/// points (0 for none; see asmcore::CoordinateRange), found in the same
+/// pass. Both passes run in parallel (vtkSMPTools) over fixed blocks: the
+/// result does not depend on the thread count.
 inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_ptr<double[]>& copy,
-  asmcore::PointIds& idList, asmcore::IdView& ids, bool threads, bool floatsInPlace = false)
+  asmcore::PointIds& idList, asmcore::IdView& ids, double& largest, bool threads,
+  bool floatsInPlace = false)
 {
   using asmcore::Index;
   vtkDataArray* data = points->GetData();
@@ -186,6 +190,7 @@ inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_pt
   const Index blockSize = Index(1) << 15;
   const Index blocks = (n + blockSize - 1) / blockSize;
   std::vector<Index> finite(static_cast<std::size_t>(blocks) + 1, 0);
+  std::vector<double> blockLargest(static_cast<std::size_t>(blocks), 0.0);
   For(threads, 0, blocks, [&](vtkIdType first, vtkIdType last) {
     for (Index k = first; k < last; ++k)
     {
@@ -207,18 +212,25 @@ inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_pt
         std::copy(range.begin(), range.end(), out + 3 * begin);
       }
       Index count = 0;
+      double blockMax = 0.0;
       for (Index i = begin; i < end; ++i)
       {
         double p[3];
         xyz.Get(i, p);
-        count += (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) ? 1 : 0;
+        const bool isFinite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+        count += isFinite ? 1 : 0;
+        const double m = std::max({ std::abs(p[0]), std::abs(p[1]), std::abs(p[2]) });
+        blockMax = isFinite && m > blockMax ? m : blockMax;
       }
       finite[k + 1] = count;
+      blockLargest[k] = blockMax;
     }
   });
+  largest = 0.0;
   for (Index k = 0; k < blocks; ++k)
   {
     finite[k + 1] += finite[k];
+    largest = std::max(largest, blockLargest[k]);
   }
   idList.clear();
   if (finite[blocks] == n)
@@ -254,6 +266,18 @@ inline asmcore::Coordinates PrepareCoordinates(vtkPoints* points, std::unique_pt
     }
   });
   return xyz;
+}
+
+/// The error for a cloud whose largest |coordinate| is out of
+/// asmcore::CoordinateRange (`what`: "The input", "The original cloud"...).
+inline std::string OutOfRangeMessage(const char* what, double largest)
+{
+  std::ostringstream text;
+  text << what << "'s coordinates reach " << largest
+       << ", beyond what their squared distances can hold in double precision (the largest "
+          "|coordinate| must be 0 or within [1e-100, 1e100]): scale the cloud into that range "
+          "(e.g. with vtkTransformFilter) and the results back. The output is empty.";
+  return text.str();
 }
 
 /// The 3-component array `data` as N x 3 doubles in `copy` (float and double

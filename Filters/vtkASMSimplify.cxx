@@ -136,9 +136,10 @@ int vtkASMSimplify::RequestData(
   // mode into its cell-ordered copy, the paper mode cell by cell): no double
   // copy of 24 bytes per point. MPI runs send doubles on.
   const bool floatsInPlace = !distributed;
+  double largest = 0.0; // |coordinate|
   asmcore::Coordinates xyz = numberOfPoints > 0
     ? asmvtk::PrepareCoordinates(
-        input->GetPoints(), coordinateCopy, idList, ids, threads, floatsInPlace)
+        input->GetPoints(), coordinateCopy, idList, ids, largest, threads, floatsInPlace)
     : asmcore::Coordinates();
   vtkIdType skipped = numberOfPoints - static_cast<vtkIdType>(ids.size());
   // Duplicate ghost points (another piece's, in a partitioned dataset) are
@@ -154,6 +155,7 @@ int vtkASMSimplify::RequestData(
     skipped = comm.Sum(static_cast<Index>(skipped));
     pointsType = comm.Max(pointsType == VTK_DOUBLE ? 1.0 : 0.0) > 0.0 ? VTK_DOUBLE : VTK_FLOAT;
     coordinateEpsilon = -comm.Max(-coordinateEpsilon); // a double's if any process needs it
+    largest = comm.Max(largest);
   }
   if (skipped > 0)
   {
@@ -163,6 +165,11 @@ int vtkASMSimplify::RequestData(
   if (valid == 0)
   {
     vtkWarningMacro(<< "The input has no points to simplify: the output is empty.");
+    return 1;
+  }
+  if (!asmcore::CoordinateRange::Holds(largest))
+  {
+    vtkErrorMacro(<< asmvtk::OutOfRangeMessage("The input", largest));
     return 1;
   }
   vtkIdType target = this->TargetMode == OUTPUT_FRACTION

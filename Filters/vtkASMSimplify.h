@@ -62,7 +62,10 @@
  * warning (counted in "NumberOfSkippedPoints"; OutputFraction is taken of the
  * finite points); duplicates, far outliers, georeferenced float coordinates,
  * very dense cells and very anisotropic bounds give exactly N_s points (see
- * the README, "Messy data"). The input's field data is carried to the output.
+ * the README, "Messy data"). Coordinates beyond 1e100 in magnitude, or all
+ * below 1e-100 (but not all 0), are an error with an empty output: their
+ * squared distances would overflow or underflow (asmcore::CoordinateRange).
+ * The input's field data is carried to the output.
  * The input is never modified.
  *
  * Modes. The steps above are the paper read literally (Mode PAPER, kept

@@ -171,9 +171,21 @@ int vtkKeyPointError::RequestData(
     vtkWarningMacro(<< "The simplified cloud has more points (" << simp.Ids.size()
                     << ") than the original (" << orig.Ids.size() << "): check the inputs' order.");
   }
-  if (!distributed &&
-    !Overlap(
-      asmcore::ComputeBounds(orig.Xyz, orig.Ids), asmcore::ComputeBounds(simp.Xyz, simp.Ids)))
+  const asmcore::Bounds origBounds = asmcore::ComputeBounds(orig.Xyz, orig.Ids);
+  const asmcore::Bounds simpBounds = asmcore::ComputeBounds(simp.Xyz, simp.Ids);
+  const double largest[2] = { comm.Max(origBounds.LargestMagnitude()),
+    comm.Max(simpBounds.LargestMagnitude()) };
+  for (int port = 0; port < 2; ++port)
+  {
+    if (!asmcore::CoordinateRange::Holds(largest[port]))
+    {
+      vtkErrorMacro(<< asmvtk::OutOfRangeMessage(
+                      port == 0 ? "The original (port 0) cloud" : "The simplified (port 1) cloud",
+                      largest[port]));
+      return 1;
+    }
+  }
+  if (!distributed && !Overlap(origBounds, simpBounds))
   {
     vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
                        "between unrelated clouds.");

@@ -50,6 +50,10 @@
  * names end in "Relative" when divided by the original's bounding-box
  * diagonal (by its square for squared AKPE/MKPE).
  *
+ * Points with NaN or infinite coordinates are skipped with a warning. A
+ * cloud with coordinates beyond 1e100 in magnitude, or all below 1e-100 (but
+ * not all 0), is an error with an empty output, as in vtkASMSimplify.
+ *
  * @sa vtkASMSimplify
  */
 

@@ -52,10 +52,11 @@ struct InputCoordinates
   asmcore::PointIds IdList;
   asmcore::IdView Ids;
   asmcore::Coordinates Xyz;
+  double Largest = 0.0; ///< the largest |coordinate|
   explicit InputCoordinates(vtkPolyData* input, bool threads = true, bool floatsInPlace = false)
   {
-    this->Xyz = asmvtk::PrepareCoordinates(
-      input->GetPoints(), this->Copy, this->IdList, this->Ids, threads, floatsInPlace);
+    this->Xyz = asmvtk::PrepareCoordinates(input->GetPoints(), this->Copy, this->IdList, this->Ids,
+      this->Largest, threads, floatsInPlace);
   }
 };
 

@@ -42,6 +42,16 @@ double Bounds::MaxExtent() const
   return this->Valid ? std::max({ this->Extent(0), this->Extent(1), this->Extent(2) }) : 0.0;
 }
 
+double Bounds::LargestMagnitude() const
+{
+  double largest = 0.0;
+  for (int a = 0; this->Valid && a < 3; ++a)
+  {
+    largest = std::max({ largest, std::abs(this->Min[a]), std::abs(this->Max[a]) });
+  }
+  return largest;
+}
+
 using namespace occupancy;
 
 Bounds ComputeBounds(Coordinates xyz, IdView ids, const Execution& execution)

@@ -30,6 +30,28 @@ struct VTKASMFILTERS_EXPORT Bounds
   double Extent(int axis) const { return this->Max[axis] - this->Min[axis]; }
   double Diagonal() const;
   double MaxExtent() const;
+  /// The largest |coordinate| (0 for an empty set).
+  double LargestMagnitude() const;
+};
+
+/// The coordinates the computations hold for. Squared distances and
+/// covariances square the cloud's extent, and their sums add up to a point
+/// count of them: with every |coordinate| at most MaxMagnitude (1e100) they
+/// stay below 1e212 for 1e12 points. Squared point spacings must not
+/// underflow: with the largest |coordinate| at least MinMagnitude (1e-100),
+/// they stay far above the smallest double (2.2e-308). A sphere of radius
+/// 2^k gives the same output, scaled by 2^k, for |k| <= 500 (1e150), and
+/// a wrong one (fewer or no key points, NaN or zero curvatures) from
+/// |k| = 520 on. Clouds whose points all lie at the origin are in range.
+struct VTKASMFILTERS_EXPORT CoordinateRange
+{
+  static constexpr double MinMagnitude = 1e-100;
+  static constexpr double MaxMagnitude = 1e100;
+  /// Whether a cloud whose largest |coordinate| is `largest` is in range.
+  static bool Holds(double largest)
+  {
+    return largest == 0.0 || (largest >= MinMagnitude && largest <= MaxMagnitude);
+  }
 };
 
 /// Bounds of the points xyz[3*id] for id in ids.

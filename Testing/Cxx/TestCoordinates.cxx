@@ -11,6 +11,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
+#include "vtkKeyPointError.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -141,28 +142,162 @@ TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
   }
 }
 
-TEST(HostileInputs, CoordinatesWhoseSquaresOverflow)
+namespace
 {
-  // A sphere of radius 1e160: finite coordinates, but every squared
-  // distance overflows to infinity, so every distance comparison ties. Both
-  // modes must still give exactly N_s finite points (no crash, no read out
-  // of bounds under the sanitizers).
+// A sphere of radius 2^k (a power of two: the scaled coordinates are exact).
+vtkSmartPointer<vtkPolyData> ScaledSphere(int k)
+{
   Cloud c = asmtest::Sphere(3000, 1.0, 5);
   for (double& v : c)
   {
-    v *= 1e160;
+    v = std::ldexp(v, k);
   }
+  return ToPolyData(c);
+}
+} // namespace
+
+// Clouds scaled by a power of two within asmcore::CoordinateRange: the
+// default mode's output is the unscaled one's, scaled, bit for bit
+// (coordinates, key points, curvature); the paper mode's random choices
+// hash the coordinates' bits, so it gets another draw of the same quality.
+// The key point error's figures scale with the cloud.
+TEST(HostileInputs, PowerOfTwoScalingsGiveTheScaledOutput)
+{
+  const auto one = ScaledSphere(0);
   for (const bool paper : { false, true })
   {
-    FilterRun run;
-    run.Count(150);
+    FilterRun reference;
+    reference.Count(150);
     if (paper)
     {
-      run.Filter->SetModeToPaper();
+      reference.Filter->SetModeToPaper();
     }
-    vtkPolyData* out = run.Execute(ToPolyData(c));
-    ASSERT_EQ(out->GetNumberOfPoints(), 150) << (paper ? "paper" : "default");
-    ExpectAllFinite(out);
+    vtkPolyData* expected = reference.Execute(one);
+    const double keys = FieldValue(expected, "NumberOfKeyPoints");
+    ASSERT_GT(keys, 0);
+    vtkNew<vtkKeyPointError> referenceError;
+    referenceError->SetInputData(0, one);
+    referenceError->SetInputData(1, expected);
+    referenceError->Update();
+    const double mkpe = FieldValue(referenceError->GetOutput(), "MKPERelative");
+    const double planeMean = FieldValue(referenceError->GetOutput(), "PointToPlaneMeanRelative");
+    for (const int k : { -330, -100, 100, 330 }) // 2^330 = 2.2e99
+    {
+      SCOPED_TRACE((paper ? "paper, k = " : "default, k = ") + std::to_string(k));
+      FilterRun run;
+      run.Count(150);
+      if (paper)
+      {
+        run.Filter->SetModeToPaper();
+      }
+      const auto scaled = ScaledSphere(k);
+      vtkPolyData* out = run.Execute(scaled);
+      ASSERT_EQ(out->GetNumberOfPoints(), 150);
+      EXPECT_EQ(run.Messages->Errors + run.Messages->Warnings, 0);
+      auto* h = out->GetPointData()->GetArray("MeanCurvature");
+      auto* hExpected = expected->GetPointData()->GetArray("MeanCurvature");
+      auto* key = out->GetPointData()->GetArray("KeyPoint");
+      auto* keyExpected = expected->GetPointData()->GetArray("KeyPoint");
+      const double centre[3] = { 0, 0, 0 };
+      if (!paper)
+      {
+        for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+        {
+          double p[3], q[3];
+          out->GetPoint(i, p);
+          expected->GetPoint(i, q);
+          for (int a = 0; a < 3; ++a)
+          {
+            ASSERT_EQ(p[a], std::ldexp(q[a], k)) << i;
+          }
+          ASSERT_EQ(h->GetTuple1(i), std::ldexp(hExpected->GetTuple1(i), -k)) << i;
+          ASSERT_EQ(key->GetTuple1(i), keyExpected->GetTuple1(i)) << i;
+        }
+      }
+      else
+      {
+        EXPECT_GT(FieldValue(out, "NumberOfKeyPoints"), keys / 2);
+        EXPECT_LT(std::ldexp(SphereDeviation(out, centre, std::ldexp(1.0, k), false), -k), 0.05);
+        for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+        {
+          ASSERT_NEAR(std::ldexp(h->GetTuple1(i), k), 1.0, 0.05) << i;
+        }
+      }
+      vtkNew<vtkKeyPointError> error;
+      error->SetInputData(0, scaled);
+      error->SetInputData(1, out);
+      error->Update();
+      vtkPolyData* measured = error->GetOutput();
+      ASSERT_EQ(measured->GetNumberOfPoints(), 150);
+      const double tolerance = paper ? 0.5 : 1e-12;
+      EXPECT_NEAR(FieldValue(measured, "MKPERelative"), mkpe, tolerance * mkpe);
+      EXPECT_NEAR(
+        FieldValue(measured, "PointToPlaneMeanRelative"), planeMean, tolerance * planeMean);
+      EXPECT_NEAR(FieldValue(measured, "BoundingBoxDiagonal"),
+        std::ldexp(FieldValue(referenceError->GetOutput(), "BoundingBoxDiagonal"), k),
+        std::ldexp(1e-12, k));
+    }
+  }
+}
+
+// Beyond asmcore::CoordinateRange the squared distances overflow or
+// underflow (a sphere of radius 1e160 gave no key points and NaN
+// curvatures, one at +-8e307 non-finite points in the paper mode): both
+// filters say so and output nothing, whichever port holds the cloud.
+TEST(HostileInputs, CoordinatesBeyondTheSquaresRangeAreAnError)
+{
+  for (const double scale : { 8e307, 1e160, 2e100, 5e-101, 1e-200, 1e-310 })
+  {
+    SCOPED_TRACE(scale);
+    Cloud c = asmtest::Sphere(3000, 1.0, 5);
+    for (double& v : c)
+    {
+      v *= scale;
+    }
+    const auto far = ToPolyData(c);
+    for (const bool paper : { false, true })
+    {
+      FilterRun run;
+      run.Count(150);
+      if (paper)
+      {
+        run.Filter->SetModeToPaper();
+      }
+      EXPECT_EQ(run.Execute(far)->GetNumberOfPoints(), 0);
+      EXPECT_EQ(run.Messages->Errors, 1);
+      EXPECT_NE(run.Messages->LastMessage.find("within [1e-100, 1e100]"), std::string::npos)
+        << run.Messages->LastMessage;
+    }
+    // The key point error, with the out-of-range cloud on either port.
+    Cloud unit = asmtest::Sphere(300, 1.0, 5);
+    const auto near = ToPolyData(unit);
+    for (const int port : { 0, 1 })
+    {
+      asmtest::ObservedFilter<vtkKeyPointError> error;
+      error.Filter->SetInputData(port, far);
+      error.Filter->SetInputData(1 - port, near);
+      error.Filter->Update();
+      EXPECT_EQ(error.Filter->GetOutput()->GetNumberOfPoints(), 0);
+      EXPECT_EQ(error.Messages->Errors, 1);
+      EXPECT_NE(
+        error.Messages->LastMessage.find(port == 0 ? "original (port 0)" : "simplified (port 1)"),
+        std::string::npos)
+        << error.Messages->LastMessage;
+    }
+  }
+  // At the origin, and at the range's ends: in range.
+  for (const double scale : { 0.0, 9e99 / std::sqrt(3.0), 1.01e-100 })
+  {
+    SCOPED_TRACE(scale);
+    Cloud c = asmtest::Sphere(3000, 1.0, 5);
+    for (double& v : c)
+    {
+      v *= scale;
+    }
+    FilterRun run;
+    run.Count(150);
+    EXPECT_EQ(run.Execute(ToPolyData(c))->GetNumberOfPoints(), 150);
+    EXPECT_EQ(run.Messages->Errors, 0);
   }
 }
 

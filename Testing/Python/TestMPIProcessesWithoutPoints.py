@@ -14,7 +14,8 @@ as by default (N_s = 4 makes no hole-filling move), and with Hole Fill
 Fraction 0.5 (two moves a round). With the points on process 2, process 0
 (which apportions the global budget) and process 1 have none: the budget is
 N_s of the whole cloud, and the arrays are those of the first process that
-has points.
+has points. Last, the cloud scaled out of range (coordinates of 1e160) on
+process 0 alone: an error with an empty output on every process, no hang.
 
 Environment: ASM_DATA_DIR (Testing/Data), PYTHONPATH with the asmvtk package.
 """
@@ -79,5 +80,43 @@ def run(holder):
                   % (holder, mode, counts.astype(int).tolist()))
 
 
+def out_of_range():
+    """The cloud scaled by 1e160 (beyond asmcore::CoordinateRange), on process
+    0 alone: every process learns the largest coordinate and stops with an
+    error and an empty output; none is left waiting in a collective (the
+    test's timeout), in both filters."""
+    from vtkmodules.vtkCommonCore import vtkCommand
+    from asmvtk import vtkKeyPointError
+    mine = xyz * 1e160 if rank == 0 else xyz[:0]
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(mine), deep=1))
+    piece = vtkPolyData()
+    piece.SetPoints(points)
+    errors = []
+
+    def count(caller, event):
+        errors.append(event)
+
+    for mode in (vtkASMSimplify.FEATURE_PRESERVING, vtkASMSimplify.PAPER):
+        asm = vtkASMSimplify()
+        asm.AddObserver(vtkCommand.ErrorEvent, count)
+        asm.SetInputData(piece)
+        asm.SetMode(mode)
+        asm.SetTargetModeToNumberOfOutputPoints()
+        asm.SetNumberOfOutputPoints(NS)
+        asm.Update()
+        assert asm.GetOutput().GetNumberOfPoints() == 0, (mode, rank)
+    error = vtkKeyPointError()
+    error.AddObserver(vtkCommand.ErrorEvent, count)
+    error.SetInputData(0, piece)
+    error.SetInputData(1, piece)
+    error.Update()
+    assert error.GetOutput().GetNumberOfPoints() == 0, rank
+    assert len(errors) == 3, (rank, errors)
+    if rank == 0:
+        print("coordinates of 1e160: an error on every process, empty outputs")
+
+
 run(0)
 run(size - 1)
+out_of_range()
