@@ -9,7 +9,7 @@ N_s = round(fraction * N) and prints one line: the model, N, N_s, the median
 wall time of --runs executions of the filter alone (the scan is read once,
 before; the curvature arrays are off unless --curvature, as they are not part
 of the simplification), then vtkKeyPointError's figures for the original
-against the simplified cloud (from its table output, port 1): AKPE and MKPE
+against the simplified cloud (from the field data of its port 0): AKPE and MKPE
 (Euclidean, paper Eqs. 1-2), the symmetric Hausdorff distance and the mean
 point-to-plane distance of the original points to the simplified surface.
 Distances are in the scan's units. Works with pvpython, or any Python with
@@ -69,15 +69,16 @@ def measure(path, fraction, runs, curvature):
     kpe.SetInputData(1, simplified)  # the simplified one
     kpe.SetGenerateCurvature(False)  # not part of the figures
     kpe.Update()
-    figures = kpe.GetOutputDataObject(1)  # one-row vtkTable
-    if figures is None or figures.GetNumberOfRows() != 1:
-        raise RuntimeError("vtkKeyPointError gave no figures")
+    # The figures as one-value arrays in the field data of port 0, which every
+    # process has in an MPI run (the table of port 1 has its row on process 0
+    # only).
+    figures = kpe.GetOutput().GetFieldData()
 
     def figure(name):
-        column = figures.GetColumnByName(name)
-        if column is None:
-            raise RuntimeError("vtkKeyPointError's table has no column " + name)
-        return column.GetValue(0)
+        array = figures.GetArray(name)
+        if array is None or array.GetNumberOfTuples() != 1:
+            raise RuntimeError("vtkKeyPointError gave no figure " + name)
+        return array.GetValue(0)
 
     model = os.path.splitext(os.path.basename(path))[0]
     return (model, original.GetNumberOfPoints(), simplified.GetNumberOfPoints(),
