@@ -39,7 +39,11 @@
  * the surface bends away from the simplified cloud's normals, or, without
  * normals, away from the original cloud's centroid; normals with fewer
  * tuples than points are not used, with a warning); all figures as
- * one-value arrays in its field data.
+ * one-value arrays in its field data, beside the simplified cloud's own
+ * field data, whose arrays of the same names they replace: a
+ * vtkASMSimplify output's AKPE, MKPE and CellSize (the simplifier's own
+ * figures) give way to these, while its NumberOfKeyPoints (its key samples)
+ * stays.
  * Output port 1: a one-row vtkTable of the same figures (ParaView shows it in
  * a spreadsheet view). In a distributed run (see SetController) the figures
  * are global, and only process 0's table has the row: the other processes
