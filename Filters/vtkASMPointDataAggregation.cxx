@@ -385,24 +385,80 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
     }
     return 0;
   };
+  // A group of duplicates holding several samples' representatives is
+  // listed once, under its lead (the first of them: ListDuplicatesOnce);
+  // the other samples of the group (followers) take the lead's choice.
+  using Pair = std::pair<Index, Index>;
+  const auto sampleCount = static_cast<vtkIdType>(result.Samples.size());
+  std::vector<std::pair<Index, vtkIdType>> sampleOf(static_cast<std::size_t>(sampleCount));
+  for (vtkIdType s = 0; s < sampleCount; ++s)
+  {
+    sampleOf[s] = { result.Samples[s].Representative, s };
+  }
+  std::sort(sampleOf.begin(), sampleOf.end());
+  auto sampleWith = [&sampleOf](Index point) -> vtkIdType {
+    const auto it = std::lower_bound(sampleOf.begin(), sampleOf.end(),
+      std::make_pair(point, std::numeric_limits<vtkIdType>::min()));
+    return it != sampleOf.end() && it->first == point ? it->second : -1;
+  };
+  std::vector<vtkIdType> leadSample(static_cast<std::size_t>(sampleCount), -1);
+  for (const Pair& pair : duplicates)
+  {
+    // (Every sample of that representative: two samples may share one.)
+    for (auto it = std::lower_bound(sampleOf.begin(), sampleOf.end(),
+           std::make_pair(pair.second, std::numeric_limits<vtkIdType>::min()));
+         it != sampleOf.end() && it->first == pair.second; ++it)
+    {
+      leadSample[it->second] = sampleWith(pair.first);
+    }
+  }
+  // The lead's list: [first, last) of `duplicates`.
+  auto listOf = [&duplicates](Index lead) {
+    const auto first = std::lower_bound(
+      duplicates.begin(), duplicates.end(), Pair(lead, std::numeric_limits<Index>::min()));
+    auto last = first;
+    while (last != duplicates.end() && last->first == lead)
+    {
+      ++last;
+    }
+    return std::make_pair(first, last);
+  };
+  std::vector<Index> original(static_cast<std::size_t>(sampleCount));
+  for (vtkIdType s = 0; s < sampleCount; ++s)
+  {
+    original[s] = result.Samples[s].Representative;
+  }
   std::mutex tiesMutex;
-  asmvtk::For(
-    threads, 0, static_cast<vtkIdType>(result.Samples.size()), [&](vtkIdType begin, vtkIdType end) {
+  // Pass 0: the leads (and samples without duplicates) choose; pass 1: the
+  // followers take their lead's choice.
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    asmvtk::For(threads, 0, sampleCount, [&](vtkIdType begin, vtkIdType end) {
       std::vector<std::pair<vtkIdType, Index>> found;
       for (vtkIdType s = begin; s < end; ++s)
       {
-        asmcore::Sample& sample = result.Samples[s];
-        const Index r = sample.Representative;
-        const auto first = std::lower_bound(duplicates.begin(), duplicates.end(),
-          std::make_pair(r, std::numeric_limits<Index>::min()));
-        auto last = first;
-        for (; last != duplicates.end() && last->first == r; ++last)
+        const vtkIdType lead = leadSample[s];
+        if ((pass == 0) != (lead < 0))
         {
-          const int order = compare(last->second, sample.Representative);
-          if (order < 0 || (order == 0 && last->second < sample.Representative))
+          continue;
+        }
+        asmcore::Sample& sample = result.Samples[s];
+        const Index r = original[lead < 0 ? s : lead];
+        const auto list = listOf(r);
+        if (lead < 0)
+        {
+          for (auto it = list.first; it != list.second; ++it)
           {
-            sample.Representative = last->second;
+            const int order = compare(it->second, sample.Representative);
+            if (order < 0 || (order == 0 && it->second < sample.Representative))
+            {
+              sample.Representative = it->second;
+            }
           }
+        }
+        else
+        {
+          sample.Representative = result.Samples[lead].Representative;
         }
         if (ties)
         {
@@ -414,7 +470,7 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
             }
           };
           tied(r);
-          for (auto it = first; it != last; ++it)
+          for (auto it = list.first; it != list.second; ++it)
           {
             tied(it->second);
           }
@@ -426,6 +482,7 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
         ties->insert(ties->end(), found.begin(), found.end());
       }
     });
+  }
   if (ties)
   {
     std::sort(ties->begin(), ties->end());

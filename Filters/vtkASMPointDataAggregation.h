@@ -57,7 +57,8 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// merged scans) may carry different values. A sample's representative
 /// input point becomes, among the points at exactly its position
 /// (SimplifyResult::RepresentativeDuplicates), the one whose point data
-/// comes first: array by array in the order of `inPD` (those carried: with a
+/// comes first (the same point for every sample at that position): array by
+/// array in the order of `inPD` (those carried: with a
 /// tuple for each of the `numberOfPoints` points), component by
 /// component, by value (CompareTuples), then the lower id. So the tuples
 /// copied from representatives (and, with `snap`, every array) do not depend

@@ -48,7 +48,15 @@ void AssignLargeCell(Coordinates xyz, const CellGrid& grid, const CellNeighborTa
       const NearestPoint nearest = tree.Nearest(p);
       Index best = -1;
       double bestD = Infinity;
-      if (nearest.Id >= 0)
+      if (nearest.Id >= 0 && nearest.Distance == 0.0)
+      {
+        // Every sample at p's position is at weighted distance 0, and the
+        // lowest index of those is the nearest's (its ties: the smaller id):
+        // no ball to search (with coincident samples, a ball of all of them
+        // for every point).
+        best = nearest.Id;
+      }
+      else if (nearest.Id >= 0)
       {
         tree.Radius(p, nearest.Distance * std::sqrt(scale[nearest.Id]) * (1.0 + 1e-9), near);
         for (Index s : near)

@@ -42,6 +42,45 @@ VTKASMFILTERS_EXPORT void CanonicalOrder(const double* xyz, const Index* ids, In
 /// cell after cell), where such duplicates are r's neighbours: only those
 /// are read. get(j, p) writes point j's coordinates into p[3].
 template <typename Get, typename Visit>
+void ForEachDuplicate(Index r, Index first, Index last, Get&& get, Visit&& visit);
+
+/// Whether point r has a duplicate in [first, last) (as ForEachDuplicate):
+/// reads its two neighbours only.
+template <typename Get>
+bool HasDuplicate(Index r, Index first, Index last, Get&& get)
+{
+  double at[3], p[3];
+  get(r, at);
+  auto same = [&](Index j) {
+    get(j, p);
+    return p[0] == at[0] && p[1] == at[1] && p[2] == at[2];
+  };
+  return (r - 1 >= first && same(r - 1)) || (r + 1 < last && same(r + 1));
+}
+
+/// ForEachDuplicate for the representatives of a cell's or a cloud's
+/// samples, so that a group of duplicates holding several representatives
+/// is listed once (not once per representative: a cloud of n identical
+/// points and m samples would list m n pairs): visit(r, j) for every
+/// duplicate j of r unless r's group was listed before; `listed` (one flag
+/// per point of [first, last), sized by the caller, zero at first) marks
+/// the listed groups. The first representative met lists its group.
+template <typename Get, typename Visit>
+void ListDuplicatesOnce(
+  Index r, Index first, Index last, Get&& get, std::vector<char>& listed, Visit&& visit)
+{
+  if (listed[static_cast<std::size_t>(r - first)])
+  {
+    return;
+  }
+  listed[static_cast<std::size_t>(r - first)] = 1;
+  ForEachDuplicate(r, first, last, get, [&](Index j) {
+    listed[static_cast<std::size_t>(j - first)] = 1;
+    visit(r, j);
+  });
+}
+
+template <typename Get, typename Visit>
 void ForEachDuplicate(Index r, Index first, Index last, Get&& get, Visit&& visit)
 {
   double at[3], p[3];

@@ -16,22 +16,46 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
   const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
   std::vector<Index>& count)
 {
+  // A point can be taken while it is unassigned or its cluster has two
+  // members or more. Counts only fall, or rise from 0 to 1: a point that
+  // cannot be taken never can again, so each cell's scan starts after its
+  // leading points that cannot (cursor), and every sample's scan ends at a
+  // point at its very position (nothing is nearer; ties: the first). So
+  // many samples at one position (a cloud of identical points) cost a scan
+  // of the cell in all, not one each.
+  auto eligible = [&](Index i) { return assign[i] < 0 || count[assign[i]] >= 2; };
+  std::vector<Index> cursor; // per cell (made at the first empty sample)
   for (Index s = 0; s < samples.Size(); ++s)
   {
     if (count[s] > 0)
     {
       continue;
     }
+    if (cursor.empty())
+    {
+      cursor.assign(grid.CellStart.begin(), grid.CellStart.end() - 1);
+    }
     const double* p = samples.Position.data() + 3 * s;
     const CellRef* ring = neighbors.Of(info[s].Owner);
     Index best = -1;
     double bestD = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 27; ++k)
+    for (int k = 0; k < 27 && bestD > 0.0; ++k)
     {
       const Index nb = ring[k];
-      for (Index i = nb < 0 ? 0 : grid.CellStart[nb]; nb >= 0 && i < grid.CellStart[nb + 1]; ++i)
+      if (nb < 0)
       {
-        if (assign[i] >= 0 && count[assign[i]] < 2)
+        continue;
+      }
+      const Index end = grid.CellStart[nb + 1];
+      Index i = cursor[nb];
+      while (i < end && !eligible(i))
+      {
+        ++i;
+      }
+      cursor[nb] = i;
+      for (; i < end && bestD > 0.0; ++i)
+      {
+        if (!eligible(i))
         {
           continue;
         }
@@ -118,8 +142,8 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
       {
         info[s].Point = nearest;
       }
-      ForEachDuplicate(info[s].Point, 0, grid.NumberOfPoints(), getP,
-        [&](Index) { twinned[static_cast<std::size_t>(s)] = 1; });
+      twinned[static_cast<std::size_t>(s)] =
+        HasDuplicate(info[s].Point, 0, grid.NumberOfPoints(), getP) ? 1 : 0;
       // A free sample that is not snapped is its final cluster's centroid.
       if (snap)
       {
@@ -154,13 +178,15 @@ void PlaceOutputSamples(Coordinates P, const CellGrid& grid, const SlotIds& idOf
   // The representatives' exact duplicates: their neighbours in slot order
   // (each cell's points are in canonical order), found above.
   duplicates.clear();
+  std::vector<char> listed; // (allocated at the first representative with a duplicate)
   for (std::size_t s = 0; s < info.size(); ++s)
   {
     const Index point = info[s].Point;
     if (s < twinned.size() && twinned[s])
     {
-      ForEachDuplicate(point, 0, grid.NumberOfPoints(), getP,
-        [&](Index j) { duplicates.emplace_back(idOf[point], idOf[j]); });
+      listed.resize(static_cast<std::size_t>(grid.NumberOfPoints()), 0);
+      ListDuplicatesOnce(point, 0, grid.NumberOfPoints(), getP, listed,
+        [&](Index r, Index j) { duplicates.emplace_back(idOf[r], idOf[j]); });
     }
     info[s].Point = idOf[point];
   }

@@ -250,6 +250,8 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
     Groups groups;
     std::vector<char> grouped;
     std::vector<std::pair<Index, Index>> duplicates;
+    std::vector<char> listed; // the cell's points whose duplicates are listed
+    Index listedCell = -1;    // (the cell `listed` is of)
     for (Index c = b; c < e; ++c)
     {
       if (budget[c] == 0)
@@ -312,9 +314,17 @@ SimplifyResult SimplifyPaper(Coordinates xyz, IdView ids, NormalField normals,
           s.Normal[a] = normal[a];
         }
         s.Representative = points[nearest];
-        ForEachDuplicate(
-          nearest, 0, n, [&](Index j, double* p) { CopyPoint(cellXyz + 3 * j, p); },
-          [&](Index j) { duplicates.emplace_back(points[nearest], points[j]); });
+        const auto getLocal = [&](Index j, double* p) { CopyPoint(cellXyz + 3 * j, p); };
+        if (HasDuplicate(nearest, 0, n, getLocal))
+        {
+          if (listedCell != c)
+          {
+            listed.assign(static_cast<std::size_t>(n), 0);
+            listedCell = c;
+          }
+          ListDuplicatesOnce(nearest, 0, n, getLocal, listed,
+            [&](Index r, Index j) { duplicates.emplace_back(points[r], points[j]); });
+        }
         s.MemberBegin = memberCursor;
         s.ClusterSize = static_cast<Index>(last - first);
         s.CoreSize = s.ClusterSize;

@@ -221,9 +221,12 @@ struct VTKASMFILTERS_EXPORT SimplifyResult
   double MKPE = 0.0; ///< max KeyError over key samples
   /// Exact duplicates of the representatives: (Representative of a sample,
   /// another input point at exactly its position), sorted; empty when no
-  /// representative has one. The core chooses among duplicates by id;
-  /// these let a caller choose by the points' values instead
-  /// (asmvtk::ChooseAmongDuplicates).
+  /// representative has one. A group of duplicates holding several
+  /// representatives is listed once, under the first of them (the others
+  /// appear as its duplicates): at most one pair per input point. The core
+  /// chooses among duplicates by id; these let a caller choose by the
+  /// points' values instead (asmvtk::ChooseAmongDuplicates, which gives
+  /// every sample of a group the same choice).
   std::vector<std::pair<Index, Index>> RepresentativeDuplicates;
   bool Aborted = false;
 };

@@ -243,6 +243,46 @@ TEST(Simplify, RepresentativeDuplicatesAreListed)
   }
 }
 
+// A group of exact duplicates that holds many samples' representatives (a
+// cloud of identical points) is listed once, under its first
+// representative: n - 1 pairs, not one list per sample (m (n - 1) pairs,
+// which took minutes and gigabytes). Every sample keeps a cluster of its own.
+TEST(Simplify, AGroupOfDuplicatesIsListedOnce)
+{
+  const Index n = 20000;
+  Cloud same;
+  for (Index i = 0; i < n; ++i)
+  {
+    asmtest::Add(same, 0.25, 0.5, 0.75);
+  }
+  for (auto mode : { asmcore::SimplifyMode::Paper, asmcore::SimplifyMode::FeaturePreserving })
+  {
+    asmcore::SimplifyParameters p;
+    p.NumberOfSamples = 2000;
+    p.Mode = mode;
+    const auto r = asmcore::Simplify(same.data(), AllIds(same), nullptr, p);
+    ASSERT_EQ(r.Samples.size(), 2000u) << "mode " << int(mode);
+    ASSERT_EQ(r.RepresentativeDuplicates.size(), static_cast<std::size_t>(n - 1))
+      << "mode " << int(mode);
+    const Index lead = r.RepresentativeDuplicates.front().first;
+    std::vector<char> listed(static_cast<std::size_t>(n), 0);
+    listed[static_cast<std::size_t>(lead)] = 1;
+    for (const auto& pair : r.RepresentativeDuplicates)
+    {
+      ASSERT_EQ(pair.first, lead);
+      ASSERT_FALSE(listed[static_cast<std::size_t>(pair.second)]) << pair.second;
+      listed[static_cast<std::size_t>(pair.second)] = 1;
+    }
+    bool leadIsARepresentative = false;
+    for (const auto& sample : r.Samples)
+    {
+      EXPECT_GE(sample.ClusterSize, 1) << "mode " << int(mode);
+      leadIsARepresentative = leadIsARepresentative || sample.Representative == lead;
+    }
+    EXPECT_TRUE(leadIsARepresentative);
+  }
+}
+
 TEST(Grid, TinyCellSizeIsEnlargedToTheKeyRange)
 {
   const Cloud c = { 0, 0, 0, 1000, 1, 1 };
