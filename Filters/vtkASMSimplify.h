@@ -70,13 +70,14 @@
  *
  * Modes. The steps above are the paper read literally (Mode PAPER, kept
  * exactly to reproduce the paper). Measured against the usual downsamplers,
- * that reading loses on every quality measure (see ASM-spec.md, last
- * section), so the default Mode is FEATURE_PRESERVING, which keeps steps 1-5
- * and adds, each switchable on its own: key points validated by the paper's
- * Lemma 2 across cell borders (ValidateKeyPoints, KeyPointRadius,
- * KeyPointProminence: where the grid cuts a smooth surface is not a
- * feature); extremes along +-v0/+-v1 and the frame diagonals as key points
- * (InPlaneKeyPoints: spike tips, corners), also in cells too sparse for a
+ * that reading loses on every quality measure (see docs/ASM-spec.md, "What
+ * the literal reading measures, and what fixes it"), so the default Mode is
+ * FEATURE_PRESERVING, which keeps steps 1-5 and adds, each switchable on its
+ * own: key points validated by the paper's Lemma 2 across cell borders
+ * (ValidateKeyPoints, KeyPointRadius, KeyPointProminence: where the grid
+ * cuts a smooth surface is not a feature); extremes along +-v0/+-v1 and the
+ * frame diagonals as key points (InPlaneKeyPoints: spike tips, corners),
+ * also in cells too sparse for a
  * frame (SparseCellKeyPoints); a key point placed on its extreme
  * input point (ExtremeKeyPoints); one sample per non-empty cell first and a
  * budget N_c ~ w_c * n_c^BudgetExponent (CoverEveryCell, BudgetExponent);
@@ -162,8 +163,8 @@ public:
   ///@{
   /**
    * FEATURE_PRESERVING (default) or PAPER. PAPER runs the paper's pipeline
-   * exactly as read in ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING adds
-   * the fixes below, each of which can be switched off on its own. The
+   * exactly as read in docs/ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING
+   * adds the fixes below, each of which can be switched off on its own. The
    * options below the Mode are ignored in PAPER mode. FEATURE_PRESERVING
    * keeps at most 2^31 - 1 output points and non-empty grid cells (an error
    * above that).
