@@ -429,10 +429,10 @@ public:
    * hole the clusters would leave with their samples at (about) their
    * minimax centres (key samples where they are) moves from its input point
    * towards that centre, just far enough to reach no farther; default on.
-   * Only those samples (at 20 %: 4-16 %) leave the input points;
-   * their vtkOriginalPointIds is still the input point they left. The
-   * bound is the largest hole of the whole cloud: distributed runs take it
-   * over all processes.
+   * Only those samples (at 20 %: 2-15 % on the bundled and shared scans)
+   * leave the input points; their vtkOriginalPointIds is still the input
+   * point they left. The bound is the largest hole of the whole cloud:
+   * distributed runs take it over all processes.
    */
   vtkSetMacro(BoundSnappedHoles, bool);
   vtkGetMacro(BoundSnappedHoles, bool);
