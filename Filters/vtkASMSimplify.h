@@ -10,7 +10,8 @@
  *
  * 1. hash the points into a uniform grid of cubic cells (edge CellSize, or
  *    chosen automatically so that a non-empty cell receives about
- *    SamplesPerCell output points on average);
+ *    SamplesPerCell output points on average; FeatureSamplesPerCell in
+ *    FEATURE_PRESERVING mode when it is > 0);
  * 2. give every non-empty cell c a budget N_c proportional to w_c * n_c
  *    (paper Eq. 4), rounded with the largest-remainder method so that the
  *    budgets add up to N_s exactly; w_c = 1 (uniform density) by default, or
@@ -470,7 +471,9 @@ public:
   ///@{
   /**
    * Edge length of the grid cells, in data units; <= 0 (default) chooses it
-   * automatically from SamplesPerCell.
+   * automatically from the mean number of samples per non-empty cell: in
+   * FEATURE_PRESERVING mode FeatureSamplesPerCell when it is > 0, else (and
+   * in PAPER mode) SamplesPerCell.
    */
   vtkSetMacro(CellSize, double);
   vtkGetMacro(CellSize, double);
