@@ -69,7 +69,7 @@ void Usage()
        "                           [--no-memory] [--markdown] [--asm NAME:SETTINGS ...] [input "
        "...]\n"
        "input: a .ply path, or bumps:100k, bumps:1M, bumps:4M, bumps:14M\n"
-       "--readme: the README's run (~15 min on 2 idle cores): bunny, bunny-scans, bumps "
+       "--readme: the README's run (~7 min on 2 idle cores): bunny, bunny-scans, bumps "
        "100k..14M,\n"
        "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
        "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
