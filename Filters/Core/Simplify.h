@@ -107,7 +107,7 @@ struct VTKASMFILTERS_EXPORT SimplifyParameters
   /// farther from it than the largest hole the clusters would leave with
   /// their samples at (about) their minimax centres (key samples where they
   /// are) moves towards that centre, just far enough: snapping never makes
-  /// the largest hole larger, and only those samples (at 20 %: 4-16 %) leave
+  /// the largest hole larger, and only those samples (at 20 %: 2-15 % on the scans) leave
   /// the input points. Global: a distributed driver sets it off and takes
   /// the bound over all processes after the run (SnappedHoles.h).
   bool BoundSnappedHoles = true;

@@ -140,7 +140,7 @@ TEST(FeatureCoverage, BoundSnappedHolesShrinkTheLargestHoleMovingFewSamples)
   // 20 % of a sphere and of a bumpy box (keys), with hole filling on (the
   // default) and two covering rounds (samples already near their minimax
   // centres: the bound moves few of them; without the rounds, the default,
-  // 4-16 % of the samples move on the quality benchmark's inputs).
+  // 2-15 % of the samples move on the bundled and shared scans).
   for (const Cloud& cloud : { Sphere(6000, 1.0, 3), Box(20000).Points })
   {
     const Index n = static_cast<Index>(cloud.size() / 3), target = n / 5;
