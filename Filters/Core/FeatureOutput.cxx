@@ -25,6 +25,15 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
   // of the cell in all, not one each.
   auto eligible = [&](Index i) { return assign[i] < 0 || count[assign[i]] >= 2; };
   std::vector<Index> cursor; // per cell (made at the first empty sample)
+  auto take = [&](Index s, Index i) {
+    if (assign[i] >= 0)
+    {
+      --count[assign[i]];
+    }
+    assign[i] = static_cast<SampleId>(s);
+    ++count[s];
+  };
+  std::vector<Index> leftover; // samples whose ring has no point to give
   for (Index s = 0; s < samples.Size(); ++s)
   {
     if (count[s] > 0)
@@ -71,12 +80,53 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
     }
     if (best >= 0)
     {
-      if (assign[best] >= 0)
+      take(s, best);
+    }
+    else
+    {
+      leftover.push_back(s);
+    }
+  }
+  // Samples whose ring had no point to give (N_s close to N): the nearest
+  // point that can be taken anywhere (ties: the first slot). One exists
+  // while a sample is empty and there are at least as many points as
+  // samples: N points in fewer than N_s clusters leave one with two members
+  // or one point unassigned.
+  if (leftover.empty())
+  {
+    return;
+  }
+  std::vector<Index> candidates; // (slot order)
+  for (Index i = 0; i < grid.NumberOfPoints(); ++i)
+  {
+    if (eligible(i))
+    {
+      candidates.push_back(i);
+    }
+  }
+  for (const Index s : leftover)
+  {
+    const double* p = samples.Position.data() + 3 * s;
+    Index best = -1;
+    double bestD = std::numeric_limits<double>::infinity();
+    for (const Index i : candidates)
+    {
+      if (!eligible(i))
       {
-        --count[assign[best]];
+        continue;
       }
-      assign[best] = static_cast<SampleId>(s);
-      ++count[s];
+      double x[3];
+      xyz.Get(grid.PointAt(i), x);
+      const double d = SquaredDistance(x, p);
+      if (d < bestD)
+      {
+        bestD = d;
+        best = i;
+      }
+    }
+    if (best >= 0)
+    {
+      take(s, best);
     }
   }
 }

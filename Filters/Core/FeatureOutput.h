@@ -44,7 +44,9 @@ struct VTKASMFILTERS_EXPORT CellSurface
 /// its owner cell's ring (neighbors) that are unassigned or whose cluster
 /// has two or more members, so that no cluster is emptied in turn; samples
 /// in index order, `assign` (by slot) and `count` updated. A sample whose
-/// ring has no such point stays empty.
+/// ring has no such point (N_s close to N) then takes the nearest such
+/// point of the whole grid, so that no sample stays empty while there are
+/// at least as many points as samples.
 VTKASMFILTERS_EXPORT void FillEmptyClusters(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<SampleInfo>& info,
   PointArray<SampleId>& assign, std::vector<Index>& count);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Clouds whose points share few positions (README "Messy data"): many
-// samples at one position stand for the same input point, chosen by value,
-// and each keeps a cluster of its own.
+// Crowded clouds (README "Messy data"): points that share few positions,
+// and N_s close to N. Many samples at one position stand for the same
+// input point, chosen by value; every sample keeps a cluster of its own.
 #include "FilterHelpers.h"
 
 #include "vtkASMSimplify.h"
@@ -11,6 +11,11 @@
 #include "vtkPolyData.h"
 
 #include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <set>
+#include <string>
 
 using asmtest::FilterRun;
 using asmtest::ToPolyData;
@@ -63,4 +68,68 @@ TEST(HostileInputs, ManySamplesAtOnePositionTakeTheFirstPointByValue)
       EXPECT_EQ(members, static_cast<double>(n));
     }
   }
+}
+
+// N_s close to N: every sample stands for points of its own. A sample whose
+// ring had no point to give (every neighbour a one-point cluster) stayed
+// empty and was output on another sample's point (ClusterSize 0, one
+// position twice: room-scan1 at 50 % had 11); it now takes the nearest
+// point that can be given anywhere (feature::FillEmptyClusters). With
+// N_s = N the output is the input's points (the warning says they are
+// passed through), also with the key point options off.
+TEST(HostileInputs, EverySampleHasPointsOfItsOwnUpToNsEqualsN)
+{
+  const vtkIdType n = 200;
+  int cases = 0;
+  for (unsigned seed = 0; seed < 12; ++seed)
+  {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    asmtest::Cloud cube;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      asmtest::Add(cube, unit(rng), unit(rng), unit(rng));
+    }
+    auto input = ToPolyData(cube);
+    std::set<std::array<double, 3>> inputPoints;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      std::array<double, 3> p;
+      input->GetPoint(i, p.data());
+      inputPoints.insert(p);
+    }
+    for (const vtkIdType count : { 160, 180, 190, 195, 200 })
+    {
+      for (const bool keyOptions : { true, false })
+      {
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", N_s " + std::to_string(count) +
+          (keyOptions ? "" : ", key point options off"));
+        FilterRun run;
+        run.Count(count);
+        run.Filter->SetValidateKeyPoints(keyOptions);
+        run.Filter->SetExtremeKeyPoints(keyOptions);
+        vtkPolyData* out = run.Execute(input);
+        ASSERT_EQ(out->GetNumberOfPoints(), count);
+        vtkDataArray* sizes = out->GetPointData()->GetArray("ClusterSize");
+        std::set<std::array<double, 3>> positions;
+        double members = 0.0;
+        for (vtkIdType s = 0; s < count; ++s)
+        {
+          ASSERT_GE(sizes->GetTuple1(s), 1.0) << s;
+          members += sizes->GetTuple1(s);
+          std::array<double, 3> p;
+          out->GetPoint(s, p.data());
+          positions.insert(p);
+        }
+        EXPECT_EQ(members, static_cast<double>(n));
+        EXPECT_EQ(positions.size(), static_cast<std::size_t>(count));
+        if (count == n)
+        {
+          EXPECT_EQ(positions, inputPoints);
+        }
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 120);
 }
