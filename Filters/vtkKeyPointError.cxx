@@ -23,6 +23,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -55,11 +56,17 @@ struct Cloud
   }
 };
 
+// Whether the boxes overlap, or nearly: apart by at most 1e-6 of the larger
+// of their diagonals and their largest |coordinate| (a centroid of coplanar
+// points can leave their plane by a rounding; the warning is about
+// unrelated clouds).
 bool Overlap(const asmcore::Bounds& a, const asmcore::Bounds& b)
 {
+  const double slack =
+    1e-6 * std::max({ a.Diagonal(), b.Diagonal(), a.LargestMagnitude(), b.LargestMagnitude() });
   for (int k = 0; k < 3; ++k)
   {
-    if (a.Max[k] < b.Min[k] || b.Max[k] < a.Min[k])
+    if (a.Max[k] + slack < b.Min[k] || b.Max[k] + slack < a.Min[k])
     {
       return false;
     }

@@ -17,6 +17,7 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace asmtest;
@@ -119,6 +120,31 @@ TEST(KeyPointError, AShiftedCloudIsAsFarAsTheShift)
   EXPECT_EQ(squared.Figure("HausdorffDistance"), run.Figure("HausdorffDistance"));
   EXPECT_NEAR(
     squared.Figure("HausdorffDistanceRelative"), run.Figure("HausdorffDistance") / 3.0, 1e-15);
+}
+
+// The warning about unrelated clouds: given for boxes apart, not for a
+// flat cloud whose simplification's centroids leave its plane by a rounding
+// (z = 0.1 gave 0.10000000000000003).
+TEST(KeyPointError, OnlyBoxesApartAreUnrelated)
+{
+  ErrorRun apart;
+  apart.Execute(ToPolyData(Bump), ToPolyData(Shifted(Bump, 0, 0, 10.0)));
+  EXPECT_EQ(apart.Messages->Warnings, 1);
+  EXPECT_NE(apart.Messages->LastMessage.find("do not overlap"), std::string::npos)
+    << apart.Messages->LastMessage;
+  Cloud flat;
+  std::mt19937_64 rng(0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 50; ++i)
+  {
+    Add(flat, unit(rng), unit(rng), 0.1);
+  }
+  Cloud off; // a simplification's centroids, a rounding above the plane
+  Add(off, 0.3, 0.4, std::nextafter(0.1, 1.0));
+  Add(off, 0.7, 0.6, std::nextafter(std::nextafter(0.1, 1.0), 1.0));
+  ErrorRun near;
+  near.Execute(ToPolyData(flat), ToPolyData(off));
+  EXPECT_EQ(near.Messages->Warnings, 0) << near.Messages->LastMessage;
 }
 
 TEST(KeyPointError, AKPEIsTheMeanAndMKPETheLargest)
