@@ -312,8 +312,17 @@ int vtkASMSimplify::RequestData(
   }
 
   // Points (one vertex cell each) and the generated arrays.
-  const bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
+  bool doublePrecision = this->OutputPointsPrecision == vtkAlgorithm::DOUBLE_PRECISION ||
     (this->OutputPointsPrecision == vtkAlgorithm::DEFAULT_PRECISION && pointsType == VTK_DOUBLE);
+  if (!doublePrecision && pointsType == VTK_DOUBLE &&
+    (largest > std::numeric_limits<float>::max() ||
+      (largest > 0.0 && largest < std::numeric_limits<float>::min())))
+  {
+    vtkWarningMacro(<< "The coordinates reach " << largest
+                    << ", beyond a float's normal range: the output points are double, not "
+                       "single precision as OutputPointsPrecision asks.");
+    doublePrecision = true;
+  }
   vtkAbstractArray* inputNamedNormals = inPD->GetAbstractArray("Normals");
   const bool nameTaken = // by an input array that is carried (see AggregatePointData)
     inputNamedNormals && inputNamedNormals->GetNumberOfTuples() >= numberOfPoints;

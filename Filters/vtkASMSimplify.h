@@ -583,7 +583,10 @@ public:
   ///@{
   /**
    * Precision of the output points (vtkAlgorithm::DesiredOutputPrecision);
-   * default DEFAULT_PRECISION, which follows the input.
+   * default DEFAULT_PRECISION, which follows the input. SINGLE_PRECISION
+   * for double coordinates beyond a float's normal range (above 3.4e38, or
+   * all below 1.2e-38) gives double points with a warning, not infinite or
+   * zero ones.
    */
   vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
   vtkGetMacro(OutputPointsPrecision, int);

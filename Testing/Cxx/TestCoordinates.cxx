@@ -301,6 +301,32 @@ TEST(HostileInputs, CoordinatesBeyondTheSquaresRangeAreAnError)
   }
 }
 
+// Single-precision output of double coordinates beyond a float's normal
+// range: double points and a warning (they were all infinite at 1e50, all
+// zero at 1e-60); within it, floats as asked.
+TEST(HostileInputs, SinglePrecisionOutputBeyondAFloatsRangeStaysDouble)
+{
+  for (const double scale : { 1e50, 1e-60, 1.0 })
+  {
+    SCOPED_TRACE(scale);
+    Cloud c = asmtest::Sphere(2000, 1.0, 5);
+    for (double& v : c)
+    {
+      v *= scale;
+    }
+    FilterRun run;
+    run.Count(100);
+    run.Filter->SetOutputPointsPrecision(vtkAlgorithm::SINGLE_PRECISION);
+    vtkPolyData* out = run.Execute(ToPolyData(c));
+    ASSERT_EQ(out->GetNumberOfPoints(), 100);
+    const bool beyond = scale != 1.0;
+    EXPECT_EQ(out->GetPoints()->GetDataType(), beyond ? VTK_DOUBLE : VTK_FLOAT);
+    EXPECT_EQ(run.Messages->Warnings, beyond ? 1 : 0) << run.Messages->LastMessage;
+    const double centre[3] = { 0, 0, 0 };
+    EXPECT_LT(SphereDeviation(out, centre, scale, false) / scale, 0.05);
+  }
+}
+
 // Points held as integers or in a split (structure-of-arrays) layout are
 // converted to doubles block by block: the same output as the same
 // coordinates in an ordinary double array (more points than one block).
