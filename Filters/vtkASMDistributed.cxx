@@ -10,6 +10,7 @@
 #include "Core/CellFrame.h"
 #include "Core/CellSize.h"
 #include "Core/Grid.h"
+#include "Core/Lloyd.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -58,6 +59,62 @@ Index CountOccupiedCells(const Communication& comm, const double* xyz, asmcore::
   std::sort(mine.begin(), mine.end());
   const Index distinct = static_cast<Index>(std::unique(mine.begin(), mine.end()) - mine.begin());
   return comm.Sum(distinct);
+}
+
+//------------------------------------------------------------------------------
+double EffectiveOccupiedCells(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::GridSpec& spec, double minPoints, const asmcore::Execution& execution)
+{
+  if (comm.Size() == 1)
+  {
+    return asmcore::EffectiveOccupiedCells(xyz, ids, spec, minPoints);
+  }
+  // This process's (key, points) per cell, to the process counting the key
+  // (chosen by a hash of the key), which adds up the cell's points over the
+  // processes and takes its share; the shares summed in fixed point.
+  std::vector<std::uint64_t> keys(ids.size());
+  execution.Run(0, static_cast<Index>(ids.size()), [&](Index b, Index e) {
+    for (Index i = b; i < e; ++i)
+    {
+      keys[i] = spec.KeyOf(xyz + 3 * ids[i]);
+    }
+  });
+  std::sort(keys.begin(), keys.end());
+  std::vector<asmcore::PointArray<long long>> send(static_cast<std::size_t>(comm.Size()));
+  for (std::size_t i = 0; i < keys.size();)
+  {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i])
+    {
+      ++j;
+    }
+    auto& to = send[Mix(keys[i]) % static_cast<std::uint64_t>(comm.Size())];
+    to.push_back(static_cast<long long>(keys[i]));
+    to.push_back(static_cast<long long>(j - i));
+    i = j;
+  }
+  std::vector<std::uint64_t>().swap(keys);
+  const asmcore::PointArray<long long> mine = comm.Exchange(send);
+  std::vector<std::pair<long long, long long>> cells(mine.size() / 2);
+  for (std::size_t c = 0; c < cells.size(); ++c)
+  {
+    cells[c] = { mine[2 * c], mine[2 * c + 1] };
+  }
+  std::sort(cells.begin(), cells.end());
+  asmcore::ExactMean effective;
+  for (std::size_t i = 0; i < cells.size();)
+  {
+    long long points = 0;
+    std::size_t j = i;
+    for (; j < cells.size() && cells[j].first == cells[i].first; ++j)
+    {
+      points += cells[j].second;
+    }
+    effective.Add(asmcore::SparseCellShare(static_cast<Index>(points), minPoints));
+    i = j;
+  }
+  comm.Sum(effective.Sums);
+  return effective.Total();
 }
 
 //------------------------------------------------------------------------------
@@ -233,6 +290,22 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
         return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec, execution));
       },
       start);
+    // As the serial search: when sparse cells (far outliers, stray points)
+    // make up a fifth of the count, again with each cell counted by its
+    // share (asmcore::SparseCellsDominate).
+    if (total > 0 && targetCells > 1.0 && bounds.MaxExtent() > 0.0)
+    {
+      const double minPoints = asmcore::SparseCellPoints(total, targetCells);
+      auto effective = [&](const asmcore::GridSpec& spec) {
+        return EffectiveOccupiedCells(comm, xyz, ids, spec, minPoints, execution);
+      };
+      const asmcore::GridSpec found = asmcore::GridSpec::Make(bounds, cellSize);
+      if (asmcore::SparseCellsDominate(effective(found),
+            static_cast<double>(CountOccupiedCells(comm, xyz, ids, found, execution))))
+      {
+        cellSize = asmcore::AutomaticCellSize(bounds, targetCells, false, effective);
+      }
+    }
   }
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 

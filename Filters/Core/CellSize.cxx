@@ -2,6 +2,7 @@
 #include "CellSize.h"
 
 #include "GridOccupancy.h"
+#include "Lloyd.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,11 +13,6 @@ namespace asmcore
 {
 using namespace occupancy;
 
-namespace
-{
-// Non-empty cells of `spec`, each counted by min(1, points / minPoints): a
-// cell too sparse to get a sample of its own (a far outlier, a stray point)
-// counts for its share only.
 double EffectiveOccupiedCells(Coordinates xyz, IdView ids, const GridSpec& spec, double minPoints)
 {
   // Points per cell in a hash table, then the cells in increasing key order
@@ -37,14 +33,31 @@ double EffectiveOccupiedCells(Coordinates xyz, IdView ids, const GridSpec& spec,
     }
     ++*run;
   }
-  const std::vector<std::uint64_t> keys = table.SortedKeys();
-  double count = 0.0;
-  for (std::uint64_t key : keys)
+  ExactMean count;
+  for (std::uint64_t key : table.SortedKeys())
   {
-    count += std::min(1.0, static_cast<double>(table.Find(key)) / minPoints);
+    count.Add(SparseCellShare(table.Find(key), minPoints));
   }
-  return count;
+  return count.Total();
 }
+
+double SparseCellShare(Index points, double minPoints)
+{
+  return std::min(1.0, static_cast<double>(points) / minPoints);
+}
+
+double SparseCellPoints(Index points, double targetCells)
+{
+  return std::max(1.0, static_cast<double>(points) / targetCells / 8.0);
+}
+
+bool SparseCellsDominate(double effective, double raw)
+{
+  return !(effective >= 0.8 * raw);
+}
+
+namespace
+{
 
 // The cell edge for which count(spec) is about targetCells (> 1), for a
 // cloud of largest extent > 0.
@@ -174,22 +187,6 @@ double SubsampleStart(
   });
 }
 
-// The points per cell below which a cell counts by its share in the
-// outlier-robust occupancy: less than one sample's worth at 8 samples per
-// target cell.
-double SparseCellPoints(Index points, double targetCells)
-{
-  return std::max(1.0, static_cast<double>(points) / targetCells / 8.0);
-}
-
-// Far outliers and stray points each occupy a cell of their own: when such
-// sparse cells make up a fifth of the count, they would drive the cell size
-// of the whole cloud.
-bool SparseCellsDominate(double effective, double raw)
-{
-  return !(effective >= 0.8 * raw);
-}
-
 // The outlier-robust search: each cell counted by min(1, points / minimum).
 double SearchIgnoringSparseCells(
   Coordinates xyz, IdView ids, const Bounds& bounds, double targetCells)
@@ -236,15 +233,15 @@ CellGrid BuildAutomaticCellGrid(
   CellGrid grid = (marks.Valid && marks.Spec.CellSize == found.CellSize)
     ? FinishCellGrid(ids, marks, execution)
     : BuildCellGrid(xyz, ids, found, execution);
-  // The outlier-robust count, from the grid's cells in key order (the sum
-  // of EffectiveOccupiedCells, in the same order).
+  // The outlier-robust count, from the grid's cells (the sum of
+  // EffectiveOccupiedCells).
   const double minPoints = SparseCellPoints(static_cast<Index>(ids.size()), targetCells);
-  double effective = 0.0;
+  ExactMean effective;
   for (Index c = 0; c < grid.NumberOfCells(); ++c)
   {
-    effective += std::min(1.0, static_cast<double>(grid.CellSizeOf(c)) / minPoints);
+    effective.Add(SparseCellShare(grid.CellSizeOf(c), minPoints));
   }
-  if (!SparseCellsDominate(effective, static_cast<double>(grid.NumberOfCells())))
+  if (!SparseCellsDominate(effective.Total(), static_cast<double>(grid.NumberOfCells())))
   {
     return grid;
   }

@@ -32,10 +32,27 @@ VTKASMFILTERS_EXPORT CellGrid BuildAutomaticCellGrid(Coordinates xyz, IdView ids
 /// The same search with the occupancy counted by `countOccupied` (e.g. the
 /// distinct non-empty cells over all processes of a distributed run),
 /// starting from `start` (> 0; e.g. the search on CellSizeSubsample) or from
-/// the guess that the points sample a surface (0). Without the sparse-cell
-/// search of the overload above.
+/// the guess that the points sample a surface (0). The sparse-cell search of
+/// the overload above is the caller's (the same search, with counts of
+/// EffectiveOccupiedCells).
 VTKASMFILTERS_EXPORT double AutomaticCellSize(const Bounds& bounds, double targetCells, bool empty,
   const std::function<double(const GridSpec&)>& countOccupied, double start = 0.0);
+
+/// The outlier-robust occupancy of the search: a non-empty cell with fewer
+/// than SparseCellPoints(total points, targetCells) points (less than one
+/// sample's worth at 8 samples per target cell: a far outlier, a stray
+/// point) counts by its share, SparseCellShare; when such cells make up a
+/// fifth of the count (SparseCellsDominate), they would drive the cell size
+/// of the whole cloud, and the size is searched again on these counts.
+/// The shares are summed in fixed point (ExactMean), so a distributed run,
+/// which sums each cell's points over the processes, counts exactly as a
+/// serial one.
+VTKASMFILTERS_EXPORT double SparseCellPoints(Index points, double targetCells);
+VTKASMFILTERS_EXPORT double SparseCellShare(Index points, double minPoints);
+VTKASMFILTERS_EXPORT bool SparseCellsDominate(double effective, double raw);
+/// The non-empty cells of `spec`, each counted by SparseCellShare.
+VTKASMFILTERS_EXPORT double EffectiveOccupiedCells(
+  Coordinates xyz, IdView ids, const GridSpec& spec, double minPoints);
 
 /// The points the automatic cell size is first searched on (3 coordinates
 /// each): about one in max(4, totalPoints / targetCells / 32), picked by a

@@ -325,15 +325,19 @@ void ExactMean::Add(double value)
   this->Sums[2] += 1;
 }
 
+double ExactMean::Total() const
+{
+  return std::ldexp(static_cast<double>(this->Sums[0]), -14) +
+    std::ldexp(static_cast<double>(this->Sums[1]), -40);
+}
+
 double ExactMean::Value() const
 {
   if (this->Sums[2] <= 0)
   {
     return 0.0;
   }
-  const double total = std::ldexp(static_cast<double>(this->Sums[0]), -14) +
-    std::ldexp(static_cast<double>(this->Sums[1]), -40);
-  return total / static_cast<double>(this->Sums[2]);
+  return this->Total() / static_cast<double>(this->Sums[2]);
 }
 
 std::vector<double> VariationScales(

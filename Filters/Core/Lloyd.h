@@ -99,6 +99,9 @@ struct VTKASMFILTERS_EXPORT ExactMean
   std::vector<long long> Sums = std::vector<long long>(3, 0);
 
   void Add(double value);
+  /// The sum of the terms added (as rounded), over all parts once Sums are
+  /// totals.
+  double Total() const;
   /// The mean of the terms added (over all parts, once Sums are totals); 0
   /// when there are none.
   double Value() const;
