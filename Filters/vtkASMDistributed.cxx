@@ -118,6 +118,53 @@ double EffectiveOccupiedCells(const Communication& comm, const double* xyz, asmc
 }
 
 //------------------------------------------------------------------------------
+double AutomaticCellSize(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::Bounds& bounds, Index total, double targetCells,
+  const asmcore::Execution& execution)
+{
+  // As the serial search (asmcore::AutomaticCellSize): first on the
+  // subsample picked by coordinates (the same points however the cloud is
+  // split), then on all points, the distinct cells counted over the
+  // processes.
+  const asmcore::PointArray<double> subset =
+    asmcore::CellSizeSubsample(xyz, ids, static_cast<double>(total), targetCells, execution);
+  double start = 0.0;
+  if (comm.Sum(static_cast<Index>(subset.size())) > 0)
+  {
+    std::vector<Index> subsetIds(subset.size() / 3);
+    std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
+    start = asmcore::AutomaticCellSize(
+      bounds, targetCells, total == 0, [&](const asmcore::GridSpec& spec) {
+        return static_cast<double>(
+          CountOccupiedCells(comm, subset.data(), subsetIds, spec, execution));
+      });
+  }
+  double cellSize = asmcore::AutomaticCellSize(
+    bounds, targetCells, total == 0,
+    [&](const asmcore::GridSpec& spec) {
+      return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec, execution));
+    },
+    start);
+  // Then, when sparse cells (far outliers, stray points) make up a fifth of
+  // the count, again with each cell counted by its share
+  // (asmcore::SparseCellsDominate).
+  if (total > 0 && targetCells > 1.0 && bounds.MaxExtent() > 0.0)
+  {
+    const double minPoints = asmcore::SparseCellPoints(total, targetCells);
+    auto effective = [&](const asmcore::GridSpec& spec) {
+      return EffectiveOccupiedCells(comm, xyz, ids, spec, minPoints, execution);
+    };
+    const asmcore::GridSpec found = asmcore::GridSpec::Make(bounds, cellSize);
+    if (asmcore::SparseCellsDominate(effective(found),
+          static_cast<double>(CountOccupiedCells(comm, xyz, ids, found, execution))))
+    {
+      cellSize = asmcore::AutomaticCellSize(bounds, targetCells, false, effective);
+    }
+  }
+  return cellSize;
+}
+
+//------------------------------------------------------------------------------
 asmcore::CellPartition MakeCellPartition(const Communication& comm, const asmcore::GridSpec& grid,
   const double* xyz, asmcore::IdView ids, const asmcore::Execution& execution)
 {
@@ -269,43 +316,7 @@ SimplifyShare PrepareSimplify(const Communication& comm, vtkPointSet* input, con
   {
     const double targetCells = static_cast<double>(std::min(parameters.NumberOfSamples, total)) /
       asmcore::SamplesPerCellOf(parameters);
-    // As the serial search: first on the subsample picked by coordinates
-    // (the same points however the cloud is split), then on all points.
-    const asmcore::PointArray<double> subset =
-      asmcore::CellSizeSubsample(xyz, ids, static_cast<double>(total), targetCells, execution);
-    double start = 0.0;
-    if (comm.Sum(static_cast<Index>(subset.size())) > 0)
-    {
-      std::vector<Index> subsetIds(subset.size() / 3);
-      std::iota(subsetIds.begin(), subsetIds.end(), Index(0));
-      start = asmcore::AutomaticCellSize(
-        bounds, targetCells, total == 0, [&](const asmcore::GridSpec& spec) {
-          return static_cast<double>(
-            CountOccupiedCells(comm, subset.data(), subsetIds, spec, execution));
-        });
-    }
-    cellSize = asmcore::AutomaticCellSize(
-      bounds, targetCells, total == 0,
-      [&](const asmcore::GridSpec& spec) {
-        return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec, execution));
-      },
-      start);
-    // As the serial search: when sparse cells (far outliers, stray points)
-    // make up a fifth of the count, again with each cell counted by its
-    // share (asmcore::SparseCellsDominate).
-    if (total > 0 && targetCells > 1.0 && bounds.MaxExtent() > 0.0)
-    {
-      const double minPoints = asmcore::SparseCellPoints(total, targetCells);
-      auto effective = [&](const asmcore::GridSpec& spec) {
-        return EffectiveOccupiedCells(comm, xyz, ids, spec, minPoints, execution);
-      };
-      const asmcore::GridSpec found = asmcore::GridSpec::Make(bounds, cellSize);
-      if (asmcore::SparseCellsDominate(effective(found),
-            static_cast<double>(CountOccupiedCells(comm, xyz, ids, found, execution))))
-      {
-        cellSize = asmcore::AutomaticCellSize(bounds, targetCells, false, effective);
-      }
-    }
+    cellSize = AutomaticCellSize(comm, xyz, ids, bounds, total, targetCells, execution);
   }
   share.Grid = asmcore::GridSpec::Make(bounds, cellSize);
 

@@ -221,6 +221,20 @@ private:
 Index CountOccupiedCells(const Communication& comm, const double* xyz, asmcore::IdView ids,
   const asmcore::GridSpec& spec, const asmcore::Execution& execution = {});
 
+/// The non-empty cells of `spec` over all processes, each counted by its
+/// share (asmcore::SparseCellShare of its points summed over the processes),
+/// in fixed point: the serial EffectiveOccupiedCells' value (collective).
+double EffectiveOccupiedCells(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::GridSpec& spec, double minPoints, const asmcore::Execution& execution = {});
+
+/// The serial automatic cell size (asmcore::AutomaticCellSize: the search on
+/// the coordinate-picked subsample, then on all points, then the sparse-cell
+/// search), for the points of all processes (`total` of them, in `bounds`):
+/// the same value as a serial run on the whole cloud (collective).
+double AutomaticCellSize(const Communication& comm, const double* xyz, asmcore::IdView ids,
+  const asmcore::Bounds& bounds, Index total, double targetCells,
+  const asmcore::Execution& execution = {});
+
 /// Collective: which process owns each cell of `grid` (boxes of cells from a
 /// recursive bisection balanced by the points xyz[3*id], id in ids, of every
 /// process; asmcore::MakeCellPartition).

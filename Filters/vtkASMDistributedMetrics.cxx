@@ -108,11 +108,9 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   double cellSize = options.CellSize;
   if (!(cellSize > 0.0) || !std::isfinite(cellSize))
   {
-    cellSize = asmcore::AutomaticCellSize(both,
-      static_cast<double>(allIds.size()) / std::max(1.0, options.SamplesPerCell), false,
-      [&](const asmcore::GridSpec& spec) {
-        return static_cast<double>(CountOccupiedCells(comm, xyz, ids, spec));
-      });
+    // (As the serial comparison: the original's points over both boxes.)
+    cellSize = AutomaticCellSize(comm, xyz, ids, both, comm.Sum(static_cast<Index>(ids.size())),
+      static_cast<double>(allIds.size()) / std::max(1.0, options.SamplesPerCell), execution);
   }
   const asmcore::GridSpec spec = asmcore::GridSpec::Make(both, cellSize);
   result.CellSize = spec.CellSize;
