@@ -188,7 +188,8 @@ void SearchBlock(const double* q, const Index* slots, Index m, const Neighbors& 
     }
     return;
   }
-  surface.Radius(c, reach, s.Candidates, s.CandidateSq, s.CandidateXyz);
+  // (Of a point repeated many times, k copies: a query never takes more.)
+  surface.RadiusForKNearest(c, reach, k, s.Candidates, s.CandidateSq, s.CandidateXyz);
   const std::size_t count = s.Candidates.size();
   s.CandidateReach.resize(count);
   for (std::size_t j = 0; j < count; ++j)

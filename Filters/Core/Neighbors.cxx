@@ -54,6 +54,8 @@ public:
       NeighborPrecedes(d, id, this->D[this->K - 1], this->E[this->K - 1]->Id);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
+  /// Entries a coincident leaf may give (ids ascending; see SearchNode).
+  static constexpr Index CoincidentLimit() { return std::numeric_limits<Index>::max(); }
   void Add(double d, const Entry& entry)
   {
     int i = this->Count < this->K ? this->Count++ : this->K - 1;
@@ -148,6 +150,7 @@ public:
       NeighborPrecedes(d, id, this->Heap.front().D, this->Heap.front().Id);
   }
   bool Visit(double rd, Index minId) const { return this->Accepts(rd, minId); }
+  static constexpr Index CoincidentLimit() { return std::numeric_limits<Index>::max(); }
   void Add(double d, const Entry& entry)
   {
     if (this->Heap.size() == this->K)
@@ -169,17 +172,20 @@ private:
   std::size_t K;
 };
 
-// Every entry within squared distance R2.
+// Every entry within squared distance R2; from a coincident leaf (its
+// points at one position, ids ascending) the first `limit` only.
 template <typename Entry>
 class RadiusSet
 {
 public:
-  explicit RadiusSet(double r2)
+  explicit RadiusSet(double r2, Index limit = std::numeric_limits<Index>::max())
     : R2(r2)
+    , Limit(limit)
   {
   }
   bool Accepts(double d, Index) const { return d <= this->R2; }
   bool Visit(double rd, Index) const { return rd <= this->R2; }
+  Index CoincidentLimit() const { return this->Limit; }
   void Add(double d, const Entry& entry) { this->Hits.push_back({ d, entry.Id, &entry }); }
   /// Offers every entry of [first, last).
   void Scan(const Entry* first, const Entry* last, const double p[3])
@@ -190,6 +196,7 @@ public:
 
 private:
   double R2;
+  Index Limit;
 };
 
 // Where an answer goes: ids, and optionally squared distances and
@@ -284,8 +291,13 @@ void BasicNeighbors<E>::SearchNode(
     const Entry* last = this->Points.data() + node.End;
     if (node.Coincident)
     {
-      // One distance; ids ascending: the first rejected id ends the scan.
+      // One distance; ids ascending: the first rejected id ends the scan,
+      // and so does the result's limit.
       const double d = SquaredDistance(first->P, p);
+      if (last - first > result.CoincidentLimit())
+      {
+        last = first + result.CoincidentLimit();
+      }
       for (; first != last && result.Accepts(d, first->Id); ++first)
       {
         result.Add(d, *first);
@@ -378,14 +390,15 @@ NearestPoint NearestIn(const Tree& tree, const double p[3])
 }
 
 template <typename Tree>
-void RadiusIn(const Tree& tree, const double p[3], double r, const Answer& answer)
+void RadiusIn(const Tree& tree, const double p[3], double r, const Answer& answer,
+  Index coincidentLimit = std::numeric_limits<Index>::max())
 {
   answer.Clear();
   if (tree.Empty() || !Finite(p) || !(r >= 0.0) || !std::isfinite(r))
   {
     return;
   }
-  RadiusSet<typename Tree::Entry> result(r * r);
+  RadiusSet<typename Tree::Entry> result(r * r, coincidentLimit);
   tree.Search(p, result);
   answer.Write(result.Hits);
 }
@@ -414,14 +427,17 @@ void Neighbors::KNearestByPosition(const double p[3], int k, std::vector<Index>&
   auto count = static_cast<Index>(ids.size());
   if (count > k && k > 0 && sqDist[k] == sqDist[k - 1])
   {
-    // More points as near as the k-th: all of them.
+    // More points as near as the k-th: all of them, but at most k of each
+    // coincident leaf (its points share one position; ids ascending): the
+    // rest of such a leaf comes after its first k in any order by position
+    // then id. (A cloud of n identical points: k of them, not n.)
     const double d = sqDist[k - 1];
     double r = std::sqrt(d);
     while (r * r < d)
     {
       r = std::nextafter(r, std::numeric_limits<double>::infinity());
     }
-    this->Radius(p, r, ids, sqDist, xyz);
+    this->RadiusForKNearest(p, r, k, ids, sqDist, xyz);
     count = static_cast<Index>(ids.size());
     while (count > 0 && sqDist[count - 1] > d)
     {
@@ -479,5 +495,14 @@ void Neighbors::Radius(const double p[3], double r, std::vector<Index>& ids,
   const Answer answer{ ids, &sqDist, &xyz };
   this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, answer)
                            : RadiusIn(this->Wide, p, r, answer);
+}
+
+void Neighbors::RadiusForKNearest(const double p[3], double r, int k, std::vector<Index>& ids,
+  std::vector<double>& sqDist, std::vector<double>& xyz) const
+{
+  const Answer answer{ ids, &sqDist, &xyz };
+  const Index limit = std::max<Index>(k, 1);
+  this->HasCompactLayout() ? RadiusIn(this->Compact, p, r, answer, limit)
+                           : RadiusIn(this->Wide, p, r, answer, limit);
 }
 } // namespace asmcore

@@ -225,6 +225,13 @@ public:
   /// Same, with the squared distances and the coordinates (as KNearest).
   void Radius(const double p[3], double r, std::vector<Index>& ids, std::vector<double>& sqDist,
     std::vector<double>& xyz) const;
+  /// Same, but of the points at one position (as the tree keeps them
+  /// together: a leaf of coincident points) only the k of smallest id: the
+  /// others are never among any query's k nearest by distance, position
+  /// then id (KNearestByPosition). What candidates for such queries need,
+  /// without reading every copy of a many-times repeated point.
+  void RadiusForKNearest(const double p[3], double r, int k, std::vector<Index>& ids,
+    std::vector<double>& sqDist, std::vector<double>& xyz) const;
 
 private:
   BasicNeighbors<WideEntry> Wide;
