@@ -117,7 +117,16 @@
  * the same order (string, variant and bit arrays are read at the
  * representatives after the run). An array that some process
  * with points lacks, has with another type or number of components, or
- * with fewer tuples than points is dropped with a warning.
+ * with fewer tuples than points is dropped with a warning. Known
+ * differences (found by a differential sweep, 2026-11-28): with far fewer
+ * samples than non-empty cells (a small CellSize, far outliers), points of
+ * cells without a sample within a process's halo can be left out of every
+ * cluster (ClusterSize sums to less than N) or join another sample than in
+ * a serial run; exact duplicates with different values can be grouped
+ * differently (the same positions and counts, other averages), and a
+ * string array listed before the numeric ones does not take precedence in
+ * the choice among them; the normal of a cloud that fits in one cell can
+ * have the other sign.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.
