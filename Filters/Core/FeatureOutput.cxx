@@ -34,6 +34,22 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
     ++count[s];
   };
   std::vector<Index> leftover; // samples whose ring has no point to give
+  // Slot i as sample position p's nearest so far (strictly nearer: ties
+  // keep the first).
+  auto offer = [&](Index i, const double* p, Index& best, double& bestD) {
+    if (!eligible(i))
+    {
+      return;
+    }
+    double x[3];
+    xyz.Get(grid.PointAt(i), x);
+    const double d = SquaredDistance(x, p);
+    if (d < bestD)
+    {
+      bestD = d;
+      best = i;
+    }
+  };
   for (Index s = 0; s < samples.Size(); ++s)
   {
     if (count[s] > 0)
@@ -64,18 +80,7 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
       cursor[nb] = i;
       for (; i < end && bestD > 0.0; ++i)
       {
-        if (!eligible(i))
-        {
-          continue;
-        }
-        double x[3];
-        xyz.Get(grid.PointAt(i), x);
-        const double d = SquaredDistance(x, p);
-        if (d < bestD)
-        {
-          bestD = d;
-          best = i;
-        }
+        offer(i, p, best, bestD);
       }
     }
     if (best >= 0)
@@ -111,18 +116,7 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
     double bestD = std::numeric_limits<double>::infinity();
     for (const Index i : candidates)
     {
-      if (!eligible(i))
-      {
-        continue;
-      }
-      double x[3];
-      xyz.Get(grid.PointAt(i), x);
-      const double d = SquaredDistance(x, p);
-      if (d < bestD)
-      {
-        bestD = d;
-        best = i;
-      }
+      offer(i, p, best, bestD);
     }
     if (best >= 0)
     {

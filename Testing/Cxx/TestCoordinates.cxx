@@ -144,6 +144,17 @@ TEST(HostileInputs, FloatValuesInADoubleArrayGiveTheFloatResult)
 
 namespace
 {
+// A unit sphere of n points, every coordinate times `scale`.
+Cloud SphereTimes(std::size_t n, double scale)
+{
+  Cloud c = asmtest::Sphere(n, 1.0, 5);
+  for (double& v : c)
+  {
+    v *= scale;
+  }
+  return c;
+}
+
 // A sphere of radius 2^k (a power of two: the scaled coordinates are exact).
 vtkSmartPointer<vtkPolyData> ScaledSphere(int k)
 {
@@ -249,11 +260,7 @@ TEST(HostileInputs, CoordinatesBeyondTheSquaresRangeAreAnError)
   for (const double scale : { 8e307, 1e160, 2e100, 5e-101, 1e-200, 1e-310 })
   {
     SCOPED_TRACE(scale);
-    Cloud c = asmtest::Sphere(3000, 1.0, 5);
-    for (double& v : c)
-    {
-      v *= scale;
-    }
+    const Cloud c = SphereTimes(3000, scale);
     const auto far = ToPolyData(c);
     for (const bool paper : { false, true })
     {
@@ -289,11 +296,7 @@ TEST(HostileInputs, CoordinatesBeyondTheSquaresRangeAreAnError)
   for (const double scale : { 0.0, 9e99 / std::sqrt(3.0), 1.01e-100 })
   {
     SCOPED_TRACE(scale);
-    Cloud c = asmtest::Sphere(3000, 1.0, 5);
-    for (double& v : c)
-    {
-      v *= scale;
-    }
+    const Cloud c = SphereTimes(3000, scale);
     FilterRun run;
     run.Count(150);
     EXPECT_EQ(run.Execute(ToPolyData(c))->GetNumberOfPoints(), 150);
@@ -309,11 +312,7 @@ TEST(HostileInputs, SinglePrecisionOutputBeyondAFloatsRangeStaysDouble)
   for (const double scale : { 1e50, 1e-60, 1.0 })
   {
     SCOPED_TRACE(scale);
-    Cloud c = asmtest::Sphere(2000, 1.0, 5);
-    for (double& v : c)
-    {
-      v *= scale;
-    }
+    const Cloud c = SphereTimes(2000, scale);
     FilterRun run;
     run.Count(100);
     run.Filter->SetOutputPointsPrecision(vtkAlgorithm::SINGLE_PRECISION);

@@ -17,6 +17,7 @@ from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
+from asm_mpi_setup import simplified
 from asmvtk import vtkASMSimplify, vtkKeyPointError
 
 controller = vtkMultiProcessController.GetGlobalController()
@@ -33,15 +34,7 @@ def cloud(xyz):
 
 
 def run(data, mode, count, serial):
-    asm = vtkASMSimplify()
-    if serial:
-        asm.SetController(None)  # this process alone, the serial path
-    asm.SetInputData(data)
-    asm.SetMode(mode)
-    asm.SetTargetModeToNumberOfOutputPoints()
-    asm.SetNumberOfOutputPoints(count)
-    asm.Update()
-    out = asm.GetOutput()
+    _, out, _ = simplified(controller, data, mode, count, serial=serial)
     cell = out.GetFieldData().GetArray("CellSize").GetValue(0)
     return cell, vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64).reshape(-1, 3)
 

@@ -35,14 +35,17 @@ def gathered(controller, values):
     return vtk_to_numpy(received)
 
 
-def simplified(controller, data, mode, count, warnings=None):
+def simplified(controller, data, mode, count, warnings=None, serial=False):
     """vtkASMSimplify of `data` to `count` points in `mode` on every process:
     the filter, its output here and every process's output count, in process
     order (their sum must be `count`). Warning events go to `warnings` (a
-    list) when given."""
+    list) when given. `serial`: each process runs the serial path on its
+    own `data` (no controller)."""
     from asmvtk import vtkASMSimplify
 
     asm = vtkASMSimplify()
+    if serial:
+        asm.SetController(None)
     if warnings is not None:
         asm.AddObserver("WarningEvent", lambda caller, event: warnings.append(event))
     asm.SetInputData(data)
