@@ -612,7 +612,7 @@ public:
    * FEATURE_PRESERVING mode), which costs a small cloud more than a second
    * thread gains: measured on 2 cores, 2 threads were slower below about
    * 50 k points. TBB keeps its threads between loops: with Debian's VTK 9.1
-   * on 2 cores, 2 threads were faster from 6.5 k points up (36 k points:
+   * on 2 cores, 2 threads were faster on every bundled scan, from 5.2 k points up (36 k points:
    * 0.019 s against 0.028). When vtkSMPTools has one thread (Sequential
    * backend, or vtkSMPTools::Initialize(1)) every input runs on the calling
    * thread. The output is the same either way.
