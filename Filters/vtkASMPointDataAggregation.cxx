@@ -367,6 +367,13 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
       arrays.push_back(array);
     }
   }
+  // Numeric arrays first, then string, variant and bit arrays, each in the
+  // order of inPD: the order a distributed run compares them in (the others
+  // are read at the representatives after the run, to break the numeric
+  // arrays' ties: FetchRepresentativeValues), so both choose alike.
+  std::stable_partition(arrays.begin(), arrays.end(), [](vtkAbstractArray* array) {
+    return vtkDataArray::SafeDownCast(array) && array->GetDataType() != VTK_BIT;
+  });
   if (ties)
   {
     ties->clear();

@@ -58,7 +58,9 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD,
 /// input point becomes, among the points at exactly its position
 /// (SimplifyResult::RepresentativeDuplicates), the one whose point data
 /// comes first (the same point for every sample at that position): array by
-/// array in the order of `inPD` (those carried: with a
+/// array, the numeric ones in the order of `inPD`, then the string, variant
+/// and bit arrays in that order (as a distributed run compares them: these
+/// break the numeric arrays' ties there) (those carried: with a
 /// tuple for each of the `numberOfPoints` points), component by
 /// component, by value (CompareTuples), then the lower id. So the tuples
 /// copied from representatives (and, with `snap`, every array) do not depend

@@ -123,10 +123,8 @@
  * cells without a sample within a process's halo can be left out of every
  * cluster (ClusterSize sums to less than N) or join another sample than in
  * a serial run; exact duplicates with different values can be grouped
- * differently (the same positions and counts, other averages), and a
- * string array listed before the numeric ones does not take precedence in
- * the choice among them; the normal of a cloud that fits in one cell can
- * have the other sign.
+ * differently (the same positions and counts, other averages); the normal
+ * of a cloud that fits in one cell can have the other sign.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.

@@ -269,10 +269,12 @@ TEST(NoLostData, FloatMeansIgnoreNaNAndInfiniteValues)
 }
 
 // Exact duplicates with different values: a sample takes the values of the
-// copy whose values come first, array by array (the first array ties here),
-// component by component, by value: strings in byte order, NaN after every
-// number. Snapped, so that every array, the floating ones too, is taken from
-// the representative; each case with the copies in both input orders.
+// copy whose values come first, array by array, the numeric ones first (as
+// a distributed run compares them; the first array ties here), then the
+// string arrays, component by component, by value: strings in byte order,
+// NaN after every number. Snapped, so that every array, the floating ones
+// too, is taken from the representative; each case with the copies in both
+// input orders.
 TEST(NoLostData, ExactDuplicatesGiveTheValuesThatComeFirst)
 {
   const Cloud unique = asmtest::Sphere(3000, 1.0, 13);
@@ -307,10 +309,11 @@ TEST(NoLostData, ExactDuplicatesGiveTheValuesThatComeFirst)
     pd->GetPointData()->AddArray(pairs);
     return pd;
   };
-  // The copy expected second, then the one expected: the strings decide
-  // ("a" before "b"), or, when they tie, the NaN comes after 1.0.
-  const Copy cases[2][2] = { { { "b", 1.0 }, { "a", std::nan("") } },
-    { { "a", std::nan("") }, { "a", 1.0 } } };
+  // The copy expected second, then the one expected: the numbers decide
+  // (the NaN comes after 1.0), though the string array comes before them in
+  // the input, or, when they tie, the strings ("a" before "b").
+  const Copy cases[3][2] = { { { "a", std::nan("") }, { "b", 1.0 } },
+    { { "a", std::nan("") }, { "a", 1.0 } }, { { "b", 1.0 }, { "a", 1.0 } } };
   for (const auto& pair : cases)
   {
     const Copy& expected = pair[1];
