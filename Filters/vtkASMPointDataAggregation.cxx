@@ -394,21 +394,18 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
   };
   // A group of duplicates holding several samples' representatives is
   // listed once, under its lead (the first of them: ListDuplicatesOnce);
-  // the other samples of the group (followers) take the lead's choice.
+  // every sample of the group chooses over the lead and its list (the lead's
+  // own sample may not be in the result: a distributed run's halo sample).
   using Pair = std::pair<Index, Index>;
   const auto sampleCount = static_cast<vtkIdType>(result.Samples.size());
+  std::vector<Index> lead(static_cast<std::size_t>(sampleCount));
   std::vector<std::pair<Index, vtkIdType>> sampleOf(static_cast<std::size_t>(sampleCount));
   for (vtkIdType s = 0; s < sampleCount; ++s)
   {
-    sampleOf[s] = { result.Samples[s].Representative, s };
+    lead[s] = result.Samples[s].Representative;
+    sampleOf[s] = { lead[s], s };
   }
   std::sort(sampleOf.begin(), sampleOf.end());
-  auto sampleWith = [&sampleOf](Index point) -> vtkIdType {
-    const auto it = std::lower_bound(sampleOf.begin(), sampleOf.end(),
-      std::make_pair(point, std::numeric_limits<vtkIdType>::min()));
-    return it != sampleOf.end() && it->first == point ? it->second : -1;
-  };
-  std::vector<vtkIdType> leadSample(static_cast<std::size_t>(sampleCount), -1);
   for (const Pair& pair : duplicates)
   {
     // (Every sample of that representative: two samples may share one.)
@@ -416,80 +413,54 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
            std::make_pair(pair.second, std::numeric_limits<vtkIdType>::min()));
          it != sampleOf.end() && it->first == pair.second; ++it)
     {
-      leadSample[it->second] = sampleWith(pair.first);
+      lead[it->second] = pair.first;
     }
-  }
-  // The lead's list: [first, last) of `duplicates`.
-  auto listOf = [&duplicates](Index lead) {
-    const auto first = std::lower_bound(
-      duplicates.begin(), duplicates.end(), Pair(lead, std::numeric_limits<Index>::min()));
-    auto last = first;
-    while (last != duplicates.end() && last->first == lead)
-    {
-      ++last;
-    }
-    return std::make_pair(first, last);
-  };
-  std::vector<Index> original(static_cast<std::size_t>(sampleCount));
-  for (vtkIdType s = 0; s < sampleCount; ++s)
-  {
-    original[s] = result.Samples[s].Representative;
   }
   std::mutex tiesMutex;
-  // Pass 0: the leads (and samples without duplicates) choose; pass 1: the
-  // followers take their lead's choice.
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    asmvtk::For(threads, 0, sampleCount, [&](vtkIdType begin, vtkIdType end) {
-      std::vector<std::pair<vtkIdType, Index>> found;
-      for (vtkIdType s = begin; s < end; ++s)
+  asmvtk::For(threads, 0, sampleCount, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<std::pair<vtkIdType, Index>> found;
+    for (vtkIdType s = begin; s < end; ++s)
+    {
+      asmcore::Sample& sample = result.Samples[s];
+      const Index r = lead[s];
+      const auto first = std::lower_bound(
+        duplicates.begin(), duplicates.end(), Pair(r, std::numeric_limits<Index>::min()));
+      auto last = first;
+      while (last != duplicates.end() && last->first == r)
       {
-        const vtkIdType lead = leadSample[s];
-        if ((pass == 0) != (lead < 0))
+        ++last;
+      }
+      sample.Representative = r;
+      for (auto it = first; it != last; ++it)
+      {
+        const int order = compare(it->second, sample.Representative);
+        if (order < 0 || (order == 0 && it->second < sample.Representative))
         {
-          continue;
-        }
-        asmcore::Sample& sample = result.Samples[s];
-        const Index r = original[lead < 0 ? s : lead];
-        const auto list = listOf(r);
-        if (lead < 0)
-        {
-          for (auto it = list.first; it != list.second; ++it)
-          {
-            const int order = compare(it->second, sample.Representative);
-            if (order < 0 || (order == 0 && it->second < sample.Representative))
-            {
-              sample.Representative = it->second;
-            }
-          }
-        }
-        else
-        {
-          sample.Representative = result.Samples[lead].Representative;
-        }
-        if (ties)
-        {
-          // The points at its position with the same values as the one chosen.
-          auto tied = [&](Index p) {
-            if (p != sample.Representative && compare(p, sample.Representative) == 0)
-            {
-              found.emplace_back(s, p);
-            }
-          };
-          tied(r);
-          for (auto it = list.first; it != list.second; ++it)
-          {
-            tied(it->second);
-          }
+          sample.Representative = it->second;
         }
       }
-      if (!found.empty())
+      if (ties)
       {
-        const std::lock_guard<std::mutex> lock(tiesMutex);
-        ties->insert(ties->end(), found.begin(), found.end());
+        // The points at its position with the same values as the one chosen.
+        auto tied = [&](Index p) {
+          if (p != sample.Representative && compare(p, sample.Representative) == 0)
+          {
+            found.emplace_back(s, p);
+          }
+        };
+        tied(r);
+        for (auto it = first; it != last; ++it)
+        {
+          tied(it->second);
+        }
       }
-    });
-  }
+    }
+    if (!found.empty())
+    {
+      const std::lock_guard<std::mutex> lock(tiesMutex);
+      ties->insert(ties->end(), found.begin(), found.end());
+    }
+  });
   if (ties)
   {
     std::sort(ties->begin(), ties->end());
