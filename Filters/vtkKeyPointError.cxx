@@ -131,6 +131,12 @@ int vtkKeyPointError::RequestData(
       merged[port] = asmvtk::MergeLeaves(
         composite, port == 0 ? asmvtk::LeafData::PointsOnly : asmvtk::LeafData::Arrays, dropped);
       (port == 0 ? original : simplified) = merged[port];
+      for (const std::string& name : dropped) // (port 1's: passed to the output)
+      {
+        vtkWarningMacro(<< "Point array " << name
+                        << " of the simplified (port 1) cloud is not on every block with points, "
+                           "with a value for each point: it is not passed on.");
+      }
     }
   }
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

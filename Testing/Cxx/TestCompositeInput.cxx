@@ -260,6 +260,22 @@ TEST(CompositeInput, AShortArrayInALeafIsDroppedWithAWarning)
   EXPECT_EQ(out->GetPointData()->GetArray("Short"), nullptr);
   ASSERT_NE(out->GetPointData()->GetArray("Value"), nullptr);
   ASSERT_NE(out->GetPointData()->GetArray("Label"), nullptr);
+
+  // vtkKeyPointError takes a composite simplified cloud the same way, and
+  // says so too (it dropped the array without a word).
+  asmtest::ObservedFilter<vtkKeyPointError> error;
+  error.Filter->SetInputData(0, asmtest::ToPolyData(cloud));
+  error.Filter->SetInputData(1, blocks); // (as the simplified cloud: its arrays are kept)
+  error.Filter->SetGenerateCurvature(false);
+  error.Filter->Update();
+  vtkPolyData* measured = error.Filter->GetOutput();
+  EXPECT_EQ(measured->GetNumberOfPoints(), 5000);
+  EXPECT_EQ(error.Messages->Errors, 0) << error.Messages->LastMessage;
+  EXPECT_EQ(error.Messages->Warnings, 1) << error.Messages->LastMessage;
+  EXPECT_NE(error.Messages->LastMessage.find("Short"), std::string::npos)
+    << error.Messages->LastMessage;
+  EXPECT_EQ(measured->GetPointData()->GetArray("Short"), nullptr);
+  EXPECT_NE(measured->GetPointData()->GetArray("Label"), nullptr);
 }
 
 // A composite without points (empty blocks, an image) gets a warning and an
