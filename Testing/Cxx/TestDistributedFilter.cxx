@@ -408,8 +408,9 @@ TEST(DistributedFilter, LargeCloudsGetTheSerialGrid)
 // Clouds of sparse cells (100 random points: nearly every cell too sparse
 // for a sample of its own) take the automatic cell size's outlier-robust
 // second search on the distributed path too: the serial cell size and
-// points (before, 6 of these 90 runs differed; mpi.SparseCells checks the
-// same over 3 processes).
+// points (before, such runs differed: 12 of 360 in a sweep's reproducer,
+// float and double points; mpi.SparseCells checks the same over 3
+// processes).
 TEST(DistributedFilter, SparseCellsGetTheSerialCellSize)
 {
   int runs = 0;

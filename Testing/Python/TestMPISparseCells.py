@@ -6,7 +6,8 @@ point index, simplified in both modes. The distributed run must pick the
 serial run's cell size exactly and give its points: each cell's points are
 summed over the processes before its share is taken, and the shares are
 summed in fixed point (before 2026-11-28 the distributed search left the
-second search out, and 6 of 90 such runs differed from the serial ones).
+second search out, and 12 of 360 such runs of a sweep's reproducer, one
+process, differed from the serial ones).
 vtkKeyPointError's grid too, on slabs with three far outliers.
 
 Environment: PYTHONPATH with the asmvtk package.
