@@ -156,4 +156,11 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   }
   return merged;
 }
+
+std::string DroppedArrayWarning(const std::string& name, const char* whose)
+{
+  return "Point array " + name + whose +
+    " is not on every block with points, with a value for each point: it is not passed on.";
+}
+
 } // namespace asmvtk

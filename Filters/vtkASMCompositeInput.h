@@ -49,6 +49,10 @@ enum class LeafData
 /// the arrays left out because some leaf lacks them or has them otherwise.
 vtkSmartPointer<vtkPolyData> MergeLeaves(
   vtkCompositeDataSet* input, LeafData what, std::vector<std::string>& dropped);
+
+/// The warning for a dropped array `name`; `whose` (e.g. " of the simplified
+/// (port 1) cloud", or empty) names the input when a filter has two.
+std::string DroppedArrayWarning(const std::string& name, const char* whose = "");
 } // namespace asmvtk
 
 #endif

@@ -9,8 +9,8 @@
 #include "Core/CanonicalOrder.h"
 #include "Core/CellFrame.h"
 #include "Core/CellSize.h"
+#include "Core/ExactMean.h"
 #include "Core/Grid.h"
-#include "Core/Lloyd.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"

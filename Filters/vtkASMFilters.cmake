@@ -34,6 +34,7 @@ set(ASM_FILTERS_CORE
   Unclaimed
   CellNeighbors
   FeatureKeyPoints
+  ExactMean
   Lloyd
   Assignment
   Selection

@@ -97,9 +97,7 @@ int vtkASMSimplify::RequestData(
     merged = asmvtk::MergeLeaves(composite, asmvtk::LeafData::ArraysAndOrigins, dropped);
     for (const std::string& name : dropped)
     {
-      vtkWarningMacro(<< "Point array " << name
-                      << " is not on every block with points, with a value for each point: "
-                         "it is not passed on.");
+      vtkWarningMacro(<< asmvtk::DroppedArrayWarning(name));
     }
     input = merged;
   }

@@ -133,9 +133,8 @@ int vtkKeyPointError::RequestData(
       (port == 0 ? original : simplified) = merged[port];
       for (const std::string& name : dropped) // (port 1's: passed to the output)
       {
-        vtkWarningMacro(<< "Point array " << name
-                        << " of the simplified (port 1) cloud is not on every block with points, "
-                           "with a value for each point: it is not passed on.");
+        vtkWarningMacro(
+          << asmvtk::DroppedArrayWarning(name, " of the simplified (port 1) cloud"));
       }
     }
   }

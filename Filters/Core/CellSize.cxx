@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "CellSize.h"
 
+#include "ExactMean.h"
 #include "GridOccupancy.h"
-#include "Lloyd.h"
 
 #include <algorithm>
 #include <cmath>

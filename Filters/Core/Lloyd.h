@@ -18,6 +18,7 @@
 
 #include "CellFrame.h"
 #include "CellNeighbors.h"
+#include "ExactMean.h"
 #include "KeyPoints.h"
 
 #include <algorithm>
@@ -88,24 +89,6 @@ VTKASMFILTERS_EXPORT void MoveToCentroids(Coordinates xyz, const CellGrid& grid,
 VTKASMFILTERS_EXPORT std::vector<double> ClusterVariations(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const PointArray<SampleId>& assign, const SampleSet& samples,
   const Execution& execution);
-
-/// A mean that does not depend on the order of its terms nor on how they
-/// are split: each term is rounded to a multiple of 2^-40 (clamped to
-/// [0, 4096)) and summed as integers, so parts summed on several processes
-/// (Sums added element by element) give the whole's mean exactly.
-struct VTKASMFILTERS_EXPORT ExactMean
-{
-  /// The integer sums: high and low parts of the fixed-point total, count.
-  std::vector<long long> Sums = std::vector<long long>(3, 0);
-
-  void Add(double value);
-  /// The sum of the terms added (as rounded), over all parts once Sums are
-  /// totals.
-  double Total() const;
-  /// The mean of the terms added (over all parts, once Sums are totals); 0
-  /// when there are none.
-  double Value() const;
-};
 
 /// The factors of a variation-weighted assignment (AssignToSamples' scale):
 /// per sample 1 + weight * min(cap, variation[s] / mean); all 1 when the
