@@ -133,8 +133,7 @@ int vtkKeyPointError::RequestData(
       (port == 0 ? original : simplified) = merged[port];
       for (const std::string& name : dropped) // (port 1's: passed to the output)
       {
-        vtkWarningMacro(
-          << asmvtk::DroppedArrayWarning(name, " of the simplified (port 1) cloud"));
+        vtkWarningMacro(<< asmvtk::DroppedArrayWarning(name, " of the simplified (port 1) cloud"));
       }
     }
   }
