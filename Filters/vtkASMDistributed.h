@@ -114,7 +114,12 @@
  *    within the searched rings takes (only when some cells get no sample)
  *    join the nearest sample this process holds, which may differ from the
  *    global nearest; an empty-cluster repair that chains over more than two
- *    rings could differ from a one-process run (not seen in the tests).
+ *    rings could differ from a one-process run (not seen in the tests). A
+ *    sample whose ring has nothing to give (N_s close to N) takes a point
+ *    among those this process outputs (FillEmptyClusters' `output`): the
+ *    halo's clusters are not exact far from the owned cells, so a point of
+ *    the halo could otherwise be output twice, or an owned point taken by
+ *    a halo sample that is empty here only, and lost.
  *
  * Numeric point-data arrays travel with the points, in their records;
  * string, variant and bit arrays are read after the run at the samples'

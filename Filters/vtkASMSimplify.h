@@ -124,7 +124,9 @@
  * cluster (ClusterSize sums to less than N) or join another sample than in
  * a serial run; exact duplicates with different values can be grouped
  * differently (the same positions and counts, other averages); the normal
- * of a cloud that fits in one cell can have the other sign.
+ * of a cloud that fits in one cell can have the other sign; at N_s close
+ * to N, a sample with no point to take nearby takes one among its own
+ * process's output (each point still in one cluster), not the cloud's.
  * Design and limits: vtkASMDistributed.h.
  * Without MPI (a desktop or builtin ParaView session, plain VTK) nothing
  * changes.

@@ -12,18 +12,38 @@ namespace asmcore
 {
 namespace feature
 {
+std::vector<char> OutputCells(const CellGrid& grid, const SimplifyParameters& parameters)
+{
+  std::vector<char> output;
+  if (parameters.OutputCell)
+  {
+    output.resize(static_cast<std::size_t>(grid.NumberOfCells()));
+    for (Index c = 0; c < grid.NumberOfCells(); ++c)
+    {
+      output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
+    }
+  }
+  return output;
+}
+
 void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighborTable& neighbors,
   const SampleSet& samples, const std::vector<SampleInfo>& info, PointArray<SampleId>& assign,
-  std::vector<Index>& count)
+  std::vector<Index>& count, const std::vector<char>& output)
 {
   // A point can be taken while it is unassigned or its cluster has two
-  // members or more. Counts only fall, or rise from 0 to 1: a point that
-  // cannot be taken never can again, so each cell's scan starts after its
-  // leading points that cannot (cursor), and every sample's scan ends at a
-  // point at its very position (nothing is nearer; ties: the first). So
-  // many samples at one position (a cloud of identical points) cost a scan
-  // of the cell in all, not one each.
-  auto eligible = [&](Index i) { return assign[i] < 0 || count[assign[i]] >= 2; };
+  // members or more, unless it is the extreme point of the key sample it
+  // belongs to (the key sample stands for that point, on it or not: taken,
+  // it would be output twice, once snapped to by the sample that took it).
+  // Counts only fall, or rise from 0 to 1, and a key sample's own point is
+  // never taken: a point that cannot be taken never can again, so each
+  // cell's scan starts after its leading points that cannot (cursor), and
+  // every sample's scan ends at a point at its very position (nothing is
+  // nearer; ties: the first). So many samples at one position (a cloud of
+  // identical points) cost a scan of the cell in all, not one each.
+  auto eligible = [&](Index i) {
+    const SampleId s = assign[i];
+    return s < 0 || (count[s] >= 2 && !(samples.Fixed[s] && info[s].Point == i));
+  };
   std::vector<Index> cursor; // per cell (made at the first empty sample)
   auto take = [&](Index s, Index i) {
     if (assign[i] >= 0)
@@ -97,20 +117,31 @@ void FillEmptyClusters(Coordinates xyz, const CellGrid& grid, const CellNeighbor
   // while a sample is empty and there are at least as many points as
   // samples: N points in fewer than N_s clusters leave one with two members
   // or one point unassigned.
+  // A distributed run looks at what it outputs only (see the header): the
+  // halo's clusters are exact near its own cells only, and a halo cell's
+  // sample may be empty here while its members lie beyond the halo.
+  const auto outputs = [&](Index cell) { return output.empty() || output[cell]; };
   if (leftover.empty())
   {
     return;
   }
   std::vector<Index> candidates; // (slot order)
-  for (Index i = 0; i < grid.NumberOfPoints(); ++i)
+  for (Index c = 0; c < grid.NumberOfCells(); ++c)
   {
-    if (eligible(i))
+    for (Index i = grid.CellStart[c]; i < grid.CellStart[c + 1]; ++i)
     {
-      candidates.push_back(i);
+      if (eligible(i) && outputs(assign[i] < 0 ? c : info[assign[i]].Owner))
+      {
+        candidates.push_back(i);
+      }
     }
   }
   for (const Index s : leftover)
   {
+    if (!outputs(info[s].Owner))
+    {
+      continue;
+    }
     const double* p = samples.Position.data() + 3 * s;
     Index best = -1;
     double bestD = std::numeric_limits<double>::infinity();
@@ -292,14 +323,9 @@ void LayOutSamples(Coordinates xyz, IdView ids, NormalField normals,
 
 // Distributed runs: only the samples of the cells this process outputs (its
 // own), with their members; the others were computed as context.
-void KeepOutputCells(SimplifyResult& result, const std::vector<SampleInfo>& info,
-  const CellGrid& grid, const SimplifyParameters& parameters)
+void KeepOutputCells(
+  SimplifyResult& result, const std::vector<SampleInfo>& info, const std::vector<char>& output)
 {
-  std::vector<char> output(static_cast<std::size_t>(grid.NumberOfCells()));
-  for (Index c = 0; c < grid.NumberOfCells(); ++c)
-  {
-    output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
-  }
   UnwrittenArray<Sample> samples;
   PointArray<Index> members;
   for (std::size_t s = 0; s < result.Samples.size(); ++s)

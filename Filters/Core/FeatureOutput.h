@@ -39,17 +39,28 @@ struct VTKASMFILTERS_EXPORT CellSurface
   double SurfaceVariation;
 };
 
+/// Per cell, whether its samples are output (SimplifyParameters::OutputCell,
+/// a distributed run's own cells); empty without OutputCell (all are).
+VTKASMFILTERS_EXPORT std::vector<char> OutputCells(
+  const CellGrid& grid, const SimplifyParameters& parameters);
+
 /// The clusters' last repair, before the output: every sample left without
 /// members (count[s] == 0) takes the point nearest it, among the points of
 /// its owner cell's ring (neighbors) that are unassigned or whose cluster
-/// has two or more members, so that no cluster is emptied in turn; samples
+/// has two or more members, so that no cluster is emptied in turn (never a
+/// key sample's extreme point, info[s].Point, from its cluster); samples
 /// in index order, `assign` (by slot) and `count` updated. A sample whose
 /// ring has no such point (N_s close to N) then takes the nearest such
 /// point of the whole grid, so that no sample stays empty while there are
-/// at least as many points as samples.
+/// at least as many points as samples. With `output` (OutputCells, a
+/// distributed run), only the output cells' samples do, and only points
+/// that this process outputs (a member of an output cell's sample, or
+/// unassigned in an output cell): a point taken there is one that no other
+/// process outputs, and no point of another process's cluster is taken.
 VTKASMFILTERS_EXPORT void FillEmptyClusters(Coordinates xyz, const CellGrid& grid,
   const CellNeighborTable& neighbors, const SampleSet& samples, const std::vector<SampleInfo>& info,
-  PointArray<SampleId>& assign, std::vector<Index>& count);
+  PointArray<SampleId>& assign, std::vector<Index>& count,
+  const std::vector<char>& output = std::vector<char>());
 
 /// Output, step 1. P: the points in slot order (the cell-ordered copy);
 /// members: each sample's members as slots, grouped by sample
@@ -79,8 +90,8 @@ VTKASMFILTERS_EXPORT void LayOutSamples(Coordinates xyz, IdView ids, NormalField
 /// Distributed runs: only the samples of the cells this process outputs (its
 /// own, SimplifyParameters::OutputCell), with their members; the others were
 /// computed as context.
-VTKASMFILTERS_EXPORT void KeepOutputCells(SimplifyResult& result,
-  const std::vector<SampleInfo>& info, const CellGrid& grid, const SimplifyParameters& parameters);
+VTKASMFILTERS_EXPORT void KeepOutputCells(
+  SimplifyResult& result, const std::vector<SampleInfo>& info, const std::vector<char>& output);
 } // namespace feature
 } // namespace asmcore
 

@@ -11,6 +11,7 @@
 
 namespace asmcore
 {
+using feature::OutputCells;
 using feature::SampleInfo;
 
 bool RefineAcrossCells(Coordinates P, const CellGrid& grid, const CellNeighborTable& neighbors,
@@ -46,15 +47,7 @@ bool RefineAcrossCells(Coordinates P, const CellGrid& grid, const CellNeighborTa
   }
   // The cells whose samples are output (empty: all): the hole filling ranks
   // those, and the final Lloyd iterations' mean is over them.
-  std::vector<char> output;
-  if (parameters.OutputCell)
-  {
-    output.resize(static_cast<std::size_t>(cells));
-    for (Index c = 0; c < cells; ++c)
-    {
-      output[c] = parameters.OutputCell(grid.CellKey[c]) ? 1 : 0;
-    }
-  }
+  const std::vector<char> output = OutputCells(grid, parameters);
   // Hole filling; a distributed run ranks its output cells and gathers
   // (HoleFilling.h): the moves of a one-process run.
   HoleFillScope scope;

@@ -27,6 +27,7 @@ using feature::CellSurface;
 using feature::FillEmptyClusters;
 using feature::KeepOutputCells;
 using feature::LayOutSamples;
+using feature::OutputCells;
 using feature::PlaceOutputSamples;
 using feature::SampleInfo;
 
@@ -320,7 +321,8 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids, NormalFiel
       ++clusterSize[s];
     }
   }
-  FillEmptyClusters(P, grid, neighbors, samples, info, assign, clusterSize);
+  const std::vector<char> output = OutputCells(grid, parameters); // (empty: all)
+  FillEmptyClusters(P, grid, neighbors, samples, info, assign, clusterSize, output);
   // The last step that looks across cells: the table is released.
   std::vector<CellRef>().swap(neighbors.Cells);
   // The members of each sample as slots of the cell-ordered copy (in slot
@@ -355,7 +357,7 @@ SimplifyResult SimplifyFeaturePreserving(Coordinates xyz, IdView ids, NormalFiel
     xyz, ids, normals, surfaces, info, samples, memberStart, parameters, result, execution);
   if (parameters.OutputCell)
   {
-    KeepOutputCells(result, info, grid, parameters);
+    KeepOutputCells(result, info, output);
   }
   SummarizeKeyPoints(result);
   execution.Report(1.0);

@@ -140,6 +140,22 @@ for mode in (vtkASMSimplify.FEATURE_PRESERVING, vtkASMSimplify.PAPER):
         assert len(got) == count and got == expected, (mode, count, got[:5], expected[:5])
         assert all(pair == (0.0, 0.0) for pair in got), (mode, count)
         runs += 1
+# N_s close to N (a slab of 3000 points, 98 and 99.5 %): a sample whose ring
+# has no point to give takes one among those its process outputs. Before
+# 2026-11-29 it took the nearest anywhere in the process's grid, halo
+# included: one point was then output in two clusters (ClusterSize summed to
+# 3001, seed 7) or in none (2999, seed 3, a halo sample that seemed empty
+# took it). Every point is in exactly one cluster, every sample in its own
+# position (the choice may differ from a one-process run's).
+for seed, count in ((3, 2985), (7, 2940), (3, 2940), (7, 2985)):
+    xyz = np.random.default_rng(seed).random((3000, 3)) * [1.0, 1.0, 0.02]
+    _, out, _ = simplified(controller, cloud(xyz[rank::size]), vtkASMSimplify.FEATURE_PRESERVING,
+                           count)
+    sizes = gathered(controller, vtk_to_numpy(out.GetPointData().GetArray("ClusterSize")))
+    points = all_points(vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64))
+    assert len(points) == count and len(np.unique(points, axis=0)) == count, (seed, count)
+    assert sizes.sum() == 3000 and sizes.min() >= 1, (seed, count, sizes.sum(), sizes.min())
+    runs += 1
 if rank == 0:
-    print("%d runs: the serial cell size, points, key point error and choice among duplicates"
-          " over %d processes" % (runs, size))
+    print("%d runs: the serial cell size, points, key point error and choice among duplicates,"
+          " and whole clusters at N_s close to N, over %d processes" % (runs, size))
