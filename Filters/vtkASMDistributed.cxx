@@ -193,7 +193,7 @@ void GlobalCentroid(const Communication& comm, const double* xyz, asmcore::IdVie
 }
 
 //------------------------------------------------------------------------------
-void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list)
+void DropGhostPoints(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list)
 {
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
     input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
@@ -205,7 +205,8 @@ void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::Poin
   kept.reserve(ids.size());
   for (Index id : ids)
   {
-    if (!(ghosts->GetValue(id) & vtkDataSetAttributes::DUPLICATEPOINT))
+    if (!(ghosts->GetValue(id) &
+          (vtkDataSetAttributes::DUPLICATEPOINT | vtkDataSetAttributes::HIDDENPOINT)))
     {
       kept.push_back(id);
     }

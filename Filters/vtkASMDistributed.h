@@ -127,7 +127,7 @@
  * them, exact duplicates included). An array that some process with points
  * lacks (or has with another type, fewer components or fewer tuples than
  * points) is dropped with a warning, as are unnamed arrays. Points flagged
- * as duplicate ghosts (vtkGhostType) are skipped.
+ * as duplicate ghosts or hidden (vtkGhostType) are skipped.
  * The core runs unchanged on each process's points through hooks in
  * asmcore::SimplifyParameters (Grid, CellBudget, CloudCentroid, OutputCell);
  * halo cells are passed to it too (Paper: budget -1, neighbours only;
@@ -423,10 +423,11 @@ void GlobalCentroid(const Communication& comm, const double* xyz, asmcore::IdVie
   double centroid[3]);
 
 /// Drops from `ids` the points flagged as duplicates of another process's
-/// or piece's points (vtkGhostType & DUPLICATEPOINT): `ids` then views
+/// or piece's points, or as hidden (blanked: not part of the data), in
+/// vtkGhostType (DUPLICATEPOINT, HIDDENPOINT): `ids` then views
 /// `list`, which holds the others. Without a ghost array (or with one
 /// shorter than the points) nothing changes (no copy).
-void DropDuplicateGhosts(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list);
+void DropGhostPoints(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list);
 } // namespace asmvtk
 
 #endif

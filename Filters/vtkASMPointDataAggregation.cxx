@@ -7,7 +7,6 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
-#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkPointData.h"
@@ -292,7 +291,6 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
   {
     representatives[s] = result.Samples[s].Representative;
   }
-  vtkNew<vtkIdList> representativeList;
   int dropped = 0;
   for (int i = 0; i < inPD->GetNumberOfArrays(); ++i)
   {
@@ -329,13 +327,14 @@ int AggregatePointData(vtkPointData* inPD, vtkPointData* outPD, const SimplifyRe
     }
     else
     {
-      // Bit, string, variant and other array layouts: the generic API.
-      if (representativeList->GetNumberOfIds() != count)
+      // Bit, string, variant and other array layouts: the generic API, a
+      // tuple at a time (VTK 9.2's vtkStringArray::GetTuples(vtkIdList*)
+      // takes the ids as value indices: a 2-component array got the wrong
+      // strings).
+      for (vtkIdType s = 0; s < count; ++s)
       {
-        representativeList->SetNumberOfIds(count);
-        std::copy(representatives.begin(), representatives.end(), representativeList->begin());
+        out->SetTuple(s, representatives[s], in);
       }
-      in->GetTuples(representativeList, out);
     }
     const int index = outPD->AddArray(out);
     for (int attribute = 0; attribute < vtkDataSetAttributes::NUM_ATTRIBUTES; ++attribute)

@@ -141,8 +141,8 @@ int vtkASMSimplify::RequestData(
     : asmcore::Coordinates();
   vtkIdType skipped = numberOfPoints - static_cast<vtkIdType>(ids.size());
   // Duplicate ghost points (another piece's, in a partitioned dataset) are
-  // not this input's to simplify.
-  asmvtk::DropDuplicateGhosts(input, ids, idList);
+  // not this input's to simplify, nor are hidden (blanked) ones.
+  asmvtk::DropGhostPoints(input, ids, idList);
   vtkIdType valid = static_cast<vtkIdType>(ids.size());
   int pointsType = numberOfPoints > 0 ? input->GetPoints()->GetDataType() : VTK_FLOAT;
   double coordinateEpsilon = numberOfPoints > 0 ? asmvtk::CoordinateEpsilon(input->GetPoints())

@@ -61,7 +61,9 @@
  *
  * Messy input: points with NaN or infinite coordinates are skipped with a
  * warning (counted in "NumberOfSkippedPoints"; OutputFraction is taken of the
- * finite points); duplicates, far outliers, georeferenced float coordinates,
+ * finite points); points flagged in vtkGhostType as another piece's
+ * (DUPLICATEPOINT) or hidden (HIDDENPOINT) are skipped without a word (not
+ * this input's points); duplicates, far outliers, georeferenced float coordinates,
  * very dense cells and very anisotropic bounds give exactly N_s points (see
  * the README, "Messy data"). Coordinates beyond 1e100 in magnitude, or all
  * below 1e-100 (but not all 0), are an error with an empty output: their

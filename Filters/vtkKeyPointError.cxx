@@ -37,13 +37,15 @@ namespace
 {
 using asmcore::Index;
 
-// A cloud's coordinates as doubles and its finite points.
+// A cloud's coordinates as doubles and its finite points that are neither
+// duplicate ghosts (another piece's points) nor hidden: vtkASMSimplify
+// skips them too.
 struct Cloud
 {
   std::vector<double> Copy;
   const double* Xyz = nullptr;
   std::vector<Index> Ids;
-  vtkIdType Skipped = 0;
+  vtkIdType Skipped = 0; // (non-finite)
 
   explicit Cloud(vtkPointSet* data)
   {
@@ -52,18 +54,27 @@ struct Cloud
       this->Xyz = asmvtk::CoordinatesAsDoubles(data->GetPoints(), this->Copy);
       this->Ids = asmcore::FinitePointIds(this->Xyz, data->GetNumberOfPoints());
       this->Skipped = data->GetNumberOfPoints() - static_cast<vtkIdType>(this->Ids.size());
+      asmcore::IdView ids(this->Ids);
+      asmcore::PointIds owned;
+      asmvtk::DropGhostPoints(data, ids, owned);
+      if (ids.size() != this->Ids.size())
+      {
+        this->Ids.assign(ids.begin(), ids.end());
+      }
     }
   }
 };
 
 // Whether the boxes overlap, or nearly: apart by at most 1e-6 of the larger
-// of their diagonals and their largest |coordinate| (a centroid of coplanar
-// points can leave their plane by a rounding; the warning is about
-// unrelated clouds).
-bool Overlap(const asmcore::Bounds& a, const asmcore::Bounds& b)
+// diagonal plus 16 roundings (`epsilon`, the coarser of the clouds'
+// precisions) of the largest |coordinate| (a centroid of coplanar points can
+// leave their plane by a rounding; the warning is about unrelated clouds).
+// (Before 2026-11-29 the slack was 1e-6 of the largest |coordinate|: 5 m
+// 5e6 m from the origin, so that two 1 m clouds 4 m apart passed.)
+bool Overlap(const asmcore::Bounds& a, const asmcore::Bounds& b, double epsilon)
 {
-  const double slack =
-    1e-6 * std::max({ a.Diagonal(), b.Diagonal(), a.LargestMagnitude(), b.LargestMagnitude() });
+  const double slack = 1e-6 * std::max(a.Diagonal(), b.Diagonal()) +
+    16.0 * epsilon * std::max(a.LargestMagnitude(), b.LargestMagnitude());
   for (int k = 0; k < 3; ++k)
   {
     if (a.Max[k] + slack < b.Min[k] || b.Max[k] + slack < a.Min[k])
@@ -196,14 +207,6 @@ int vtkKeyPointError::RequestData(
       return 1;
     }
   }
-  if (!distributed && !Overlap(origBounds, simpBounds))
-  {
-    vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
-                       "between unrelated clouds.");
-  }
-
-  asmcore::ComparisonOptions options;
-  options.Rule.Alpha = this->Alpha;
   // The coordinates' precision, of the whole original cloud, as
   // vtkASMSimplify takes it (asmvtk::CoordinateEpsilon: a double's when any
   // process holds double values that a float cannot hold). A process without
@@ -217,6 +220,16 @@ int vtkKeyPointError::RequestData(
   {
     coordinateEpsilon = -comm.Max(-coordinateEpsilon);
   }
+  if (!distributed &&
+    !Overlap(origBounds, simpBounds,
+      std::max(coordinateEpsilon, asmvtk::CoordinateEpsilon(simplified->GetPoints()))))
+  {
+    vtkWarningMacro(<< "The two clouds' bounding boxes do not overlap: the distances are those "
+                       "between unrelated clouds.");
+  }
+
+  asmcore::ComparisonOptions options;
+  options.Rule.Alpha = this->Alpha;
   options.Rule.CoordinateEpsilon = coordinateEpsilon;
   options.CellSize = this->CellSize;
   options.SamplesPerCell = this->SamplesPerCell;

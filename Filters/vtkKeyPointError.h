@@ -54,7 +54,10 @@
  * names end in "Relative" when divided by the original's bounding-box
  * diagonal (by its square for squared AKPE/MKPE).
  *
- * Points with NaN or infinite coordinates are skipped with a warning. A
+ * Points with NaN or infinite coordinates are skipped with a warning;
+ * points flagged in vtkGhostType as another piece's (DUPLICATEPOINT) or
+ * hidden (HIDDENPOINT) are skipped too, as vtkASMSimplify skips them
+ * (skipped simplified points get NaN in "Error" and the curvature). A
  * cloud with coordinates beyond 1e100 in magnitude, or all below 1e-100 (but
  * not all 0), is an error with an empty output, as in vtkASMSimplify.
  *

@@ -78,7 +78,8 @@ int BitOf(vtkIdType i)
   return i % 3 == 0 ? 1 : 0;
 }
 
-// A sphere with a string, a variant and a two-component bit array.
+// A sphere with a string, a variant, a two-component bit and a
+// two-component string array.
 vtkSmartPointer<vtkPolyData> SphereWithArrays()
 {
   vtkSmartPointer<vtkPolyData> input = asmtest::ToPolyData(asmtest::Sphere(6000, 1.0, 5));
@@ -112,6 +113,18 @@ vtkSmartPointer<vtkPolyData> SphereWithArrays()
   input->GetPointData()->AddArray(variants);
   input->GetPointData()->AddArray(label);
   input->GetPointData()->AddArray(bits);
+  // Two strings per point (before 2026-11-29 the serial path copied a
+  // string array's values at the representatives' ids as value indices:
+  // every tuple of a two-component array was wrong).
+  vtkNew<vtkStringArray> pairs;
+  pairs->SetName("Name pair");
+  pairs->SetNumberOfComponents(2);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    pairs->InsertNextValue(NameOf(i));
+    pairs->InsertNextValue("second of " + std::to_string(i));
+  }
+  input->GetPointData()->AddArray(pairs);
   return input;
 }
 
@@ -158,7 +171,10 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
       auto* names = vtkStringArray::SafeDownCast(pd->GetAbstractArray("Point name"));
       auto* variants = vtkVariantArray::SafeDownCast(pd->GetAbstractArray("Variant"));
       auto* bits = vtkBitArray::SafeDownCast(pd->GetAbstractArray("Bits"));
-      ASSERT_TRUE(ids && names && variants && bits) << what;
+      auto* pairs = vtkStringArray::SafeDownCast(pd->GetAbstractArray("Name pair"));
+      ASSERT_TRUE(ids && names && variants && bits && pairs) << what;
+      ASSERT_EQ(pairs->GetNumberOfComponents(), 2) << what;
+      ASSERT_EQ(pairs->GetNumberOfValues(), 600) << what;
       ASSERT_EQ(out->GetNumberOfPoints(), 300) << what;
       ASSERT_EQ(names->GetNumberOfValues(), 300) << what;
       ASSERT_EQ(bits->GetNumberOfComponents(), 2) << what;
@@ -169,7 +185,9 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
         const vtkIdType id = ids->GetValue(s);
         const vtkVariant v = variants->GetValue(s);
         wrong += names->GetValue(s) != NameOf(id) || !SameVariant(v, VariantOf(id)) ||
-            bits->GetValue(2 * s) != BitOf(id) || bits->GetValue(2 * s + 1) != 1 - BitOf(id)
+            bits->GetValue(2 * s) != BitOf(id) || bits->GetValue(2 * s + 1) != 1 - BitOf(id) ||
+            pairs->GetValue(2 * s) != NameOf(id) ||
+            pairs->GetValue(2 * s + 1) != "second of " + std::to_string(id)
           ? 1
           : 0;
         double p[3];
@@ -189,9 +207,10 @@ TEST(DistributedArrays, StringVariantAndBitArraysTakeTheRepresentativesValues)
     }
     EXPECT_EQ(rows[1], rows[0]) << "mode " << mode << ": the distributed run gives the serial one";
     EXPECT_EQ(arrayNames[1], arrayNames[0]) << "mode " << mode << ": arrays in the same order";
-    ASSERT_GE(arrayNames[0].size(), 5u);
+    ASSERT_GE(arrayNames[0].size(), 6u);
     EXPECT_EQ(arrayNames[0][0], "Point name");
     EXPECT_EQ(arrayNames[0][4], "Bits");
+    EXPECT_EQ(arrayNames[0][5], "Name pair");
   }
 }
 

@@ -151,23 +151,28 @@ TEST(HostileInputs, HalfOfThePointsExactDuplicates)
 
 // A piece of a partitioned dataset with its ghost points (another piece's,
 // flagged DUPLICATEPOINT in vtkGhostType): they are not simplified here, in a
-// serial run as in an MPI run. A ghost array shorter than the points is not
-// read (it is dropped with a warning, as any short array).
+// serial run as in an MPI run; nor are hidden (blanked, HIDDENPOINT) points
+// (before 2026-11-29 they were, and samples standing for them were output
+// flagged hidden). A ghost array shorter than the points is not read (it is
+// dropped with a warning, as any short array).
 TEST(HostileInputs, AnotherPiecesGhostPointsAreNotSimplified)
 {
   const asmtest::Cloud sphere = asmtest::Sphere(3000, 1.0, 17);
   asmtest::Cloud c = sphere;
   const asmtest::Cloud halo = asmtest::Sphere(300, 1.02, 18); // the ghosts
   c.insert(c.end(), halo.begin(), halo.end());
-  for (const bool shortGhosts : { false, true })
+  for (const int flag : { static_cast<int>(vtkDataSetAttributes::DUPLICATEPOINT),
+         static_cast<int>(vtkDataSetAttributes::HIDDENPOINT), 0 })
   {
+    const bool shortGhosts = flag == 0; // (flagged DUPLICATEPOINT, short)
     vtkSmartPointer<vtkPolyData> input = ToPolyData(c);
     vtkNew<vtkUnsignedCharArray> ghosts;
     ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
     ghosts->SetNumberOfTuples(shortGhosts ? 1 : 3300);
     for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples(); ++i)
     {
-      ghosts->SetValue(i, i < 3000 ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+      ghosts->SetValue(
+        i, i < 3000 ? 0 : (shortGhosts ? vtkDataSetAttributes::DUPLICATEPOINT : flag));
     }
     input->GetPointData()->AddArray(ghosts);
     vtkNew<vtkIntArray> piece;
@@ -183,7 +188,8 @@ TEST(HostileInputs, AnotherPiecesGhostPointsAreNotSimplified)
       run.Filter->SetMode(mode);
       run.Filter->SetOutputFraction(0.1);
       vtkPolyData* out = run.Execute(input);
-      const std::string what = std::string(shortGhosts ? "short ghost array" : "ghosts") +
+      const std::string what = (shortGhosts ? std::string("short ghost array")
+                                            : "ghosts flagged " + std::to_string(flag)) +
         ", mode " + std::to_string(mode);
       ASSERT_EQ(out->GetNumberOfPoints(), shortGhosts ? 330 : 300) << what;
       EXPECT_EQ(run.Messages->Warnings, shortGhosts ? 1 : 0) << what;
@@ -201,6 +207,9 @@ TEST(HostileInputs, AnotherPiecesGhostPointsAreNotSimplified)
       {
         EXPECT_EQ(fromGhosts, 0.0) << what;
         EXPECT_EQ(out->GetPointData()->GetArray("ClusterSize")->GetRange()[0] >= 1.0, true);
+        vtkDataArray* flags = out->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+        ASSERT_NE(flags, nullptr) << what;
+        EXPECT_EQ(flags->GetRange()[1], 0.0) << what << ": no sample is flagged";
       }
     }
   }

@@ -9,6 +9,7 @@
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
 #include "vtkTable.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
@@ -145,6 +146,18 @@ TEST(KeyPointError, OnlyBoxesApartAreUnrelated)
   ErrorRun near;
   near.Execute(ToPolyData(flat), ToPolyData(off));
   EXPECT_EQ(near.Messages->Warnings, 0) << near.Messages->LastMessage;
+  // Far from the origin (5e6, UTM-like, in double), clouds 4 apart along x
+  // (the bump is 2 wide): unrelated too. Before 2026-11-29 the slack was
+  // 1e-6 of the largest coordinate, 5, and no warning came.
+  ErrorRun far;
+  far.Execute(ToPolyData(Shifted(Bump, 5e6, 5e6, 0)), ToPolyData(Shifted(Bump, 5e6 + 6.0, 5e6, 0)));
+  EXPECT_EQ(far.Messages->Warnings, 1) << far.Messages->LastMessage;
+  // ... and a rounding above the plane there is still no warning.
+  Cloud farOff;
+  Add(farOff, 5e6 + 0.3, 5e6 + 0.4, std::nextafter(0.1, 1.0));
+  ErrorRun farNear;
+  farNear.Execute(ToPolyData(Shifted(flat, 5e6, 5e6, 0)), ToPolyData(farOff));
+  EXPECT_EQ(farNear.Messages->Warnings, 0) << farNear.Messages->LastMessage;
 }
 
 TEST(KeyPointError, AKPEIsTheMeanAndMKPETheLargest)
@@ -176,6 +189,59 @@ TEST(KeyPointError, HausdorffTakesTheLargerDirection)
   EXPECT_EQ(run.Figure("MaxDistanceOriginalToSimplified"), 0.0);
   EXPECT_NEAR(run.Figure("MaxDistanceSimplifiedToOriginal"), 5.0, 1e-12);
   EXPECT_NEAR(run.Figure("HausdorffDistance"), 5.0, 1e-12);
+}
+
+// Points flagged in vtkGhostType as another piece's (DUPLICATEPOINT) or
+// hidden (HIDDENPOINT) are not measured, in either cloud, as vtkASMSimplify
+// does not simplify them (before 2026-11-29 they were: a piece's ghost
+// layer inflated the Hausdorff distance).
+TEST(KeyPointError, GhostAndHiddenPointsAreNotMeasured)
+{
+  for (const int flag : { static_cast<int>(vtkDataSetAttributes::DUPLICATEPOINT),
+         static_cast<int>(vtkDataSetAttributes::HIDDENPOINT) })
+  {
+    // Both clouds: the bump, then 10 flagged points 5 above it.
+    Cloud withFar = Bump;
+    for (int i = 0; i < 10; ++i)
+    {
+      Add(withFar, 0.01 * i, 0.0, 5.0);
+    }
+    const vtkIdType n = static_cast<vtkIdType>(Bump.size() / 3);
+    vtkSmartPointer<vtkPolyData> clouds[2] = { ToPolyData(withFar), ToPolyData(withFar) };
+    for (auto& cloud : clouds)
+    {
+      vtkNew<vtkUnsignedCharArray> ghosts;
+      ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+      ghosts->SetNumberOfTuples(n + 10);
+      for (vtkIdType i = 0; i < n + 10; ++i)
+      {
+        ghosts->SetValue(i, i < n ? 0 : flag);
+      }
+      cloud->GetPointData()->AddArray(ghosts);
+    }
+    // The original with its flagged points against the bump alone, then the
+    // bump against the simplified cloud with its flagged points.
+    for (int flagged = 0; flagged < 2; ++flagged)
+    {
+      ErrorRun run;
+      vtkSmartPointer<vtkPolyData> bump = ToPolyData(Bump);
+      vtkPolyData* out = flagged == 0 ? run.Execute(clouds[0], bump) : run.Execute(bump, clouds[1]);
+      const std::string what =
+        "flag " + std::to_string(flag) + (flagged == 0 ? ", original" : ", simplified");
+      EXPECT_EQ(run.Messages->Errors + run.Messages->Warnings, 0) << what;
+      EXPECT_EQ(run.Figure("NumberOfOriginalPoints"), static_cast<double>(n)) << what;
+      EXPECT_EQ(run.Figure("NumberOfSimplifiedPoints"), static_cast<double>(n)) << what;
+      EXPECT_EQ(run.Figure("HausdorffDistance"), 0.0) << what;
+      EXPECT_EQ(run.Figure("AKPE"), 0.0) << what;
+      if (flagged == 1)
+      {
+        vtkDataArray* error = out->GetPointData()->GetArray("Error");
+        ASSERT_EQ(error->GetNumberOfTuples(), n + 10) << what;
+        EXPECT_TRUE(std::isnan(error->GetTuple1(n))) << what;
+        EXPECT_FALSE(std::isnan(error->GetTuple1(0))) << what;
+      }
+    }
+  }
 }
 
 TEST(KeyPointError, MeasuresAnASMSimplification)
