@@ -20,6 +20,33 @@
 using asmtest::FilterRun;
 using asmtest::ToPolyData;
 
+namespace
+{
+// An output's clusters: their members in all, the smallest, the distinct
+// positions of their samples.
+struct Clusters
+{
+  double Members = 0.0;
+  double Smallest = 0.0;
+  std::set<std::array<double, 3>> Positions;
+};
+
+Clusters ClustersOf(vtkPolyData* out)
+{
+  Clusters clusters;
+  vtkDataArray* sizes = out->GetPointData()->GetArray("ClusterSize");
+  clusters.Smallest = out->GetNumberOfPoints() > 0 ? sizes->GetRange()[0] : 0.0;
+  for (vtkIdType s = 0; s < out->GetNumberOfPoints(); ++s)
+  {
+    clusters.Members += sizes->GetTuple1(s);
+    std::array<double, 3> p;
+    out->GetPoint(s, p.data());
+    clusters.Positions.insert(p);
+  }
+  return clusters;
+}
+} // namespace
+
 // 3000 identical points labelled 3000 - id: the smallest label is the last
 // point's. Half of them as samples, in both modes (the samples are listed
 // once as a group, asmcore::ListDuplicatesOnce; before, each listed the
@@ -110,22 +137,13 @@ TEST(HostileInputs, EverySampleHasPointsOfItsOwnUpToNsEqualsN)
         run.Filter->SetExtremeKeyPoints(keyOptions);
         vtkPolyData* out = run.Execute(input);
         ASSERT_EQ(out->GetNumberOfPoints(), count);
-        vtkDataArray* sizes = out->GetPointData()->GetArray("ClusterSize");
-        std::set<std::array<double, 3>> positions;
-        double members = 0.0;
-        for (vtkIdType s = 0; s < count; ++s)
-        {
-          ASSERT_GE(sizes->GetTuple1(s), 1.0) << s;
-          members += sizes->GetTuple1(s);
-          std::array<double, 3> p;
-          out->GetPoint(s, p.data());
-          positions.insert(p);
-        }
-        EXPECT_EQ(members, static_cast<double>(n));
-        EXPECT_EQ(positions.size(), static_cast<std::size_t>(count));
+        const Clusters clusters = ClustersOf(out);
+        EXPECT_GE(clusters.Smallest, 1.0);
+        EXPECT_EQ(clusters.Members, static_cast<double>(n));
+        EXPECT_EQ(clusters.Positions.size(), static_cast<std::size_t>(count));
         if (count == n)
         {
-          EXPECT_EQ(positions, inputPoints);
+          EXPECT_EQ(clusters.Positions, inputPoints);
         }
         ++cases;
       }
@@ -161,18 +179,9 @@ TEST(HostileInputs, KeySamplesKeepTheirExtremePoints)
       run.Count(count);
       vtkPolyData* out = run.Execute(input);
       ASSERT_EQ(out->GetNumberOfPoints(), count);
-      vtkDataArray* sizes = out->GetPointData()->GetArray("ClusterSize");
-      std::set<std::array<double, 3>> positions;
-      double members = 0.0;
-      for (vtkIdType s = 0; s < count; ++s)
-      {
-        members += sizes->GetTuple1(s);
-        std::array<double, 3> p;
-        out->GetPoint(s, p.data());
-        positions.insert(p);
-      }
-      EXPECT_EQ(members, static_cast<double>(n)) << "seed " << seed << ", N_s " << count;
-      twice += static_cast<int>(count - static_cast<vtkIdType>(positions.size()));
+      const Clusters clusters = ClustersOf(out);
+      EXPECT_EQ(clusters.Members, static_cast<double>(n)) << "seed " << seed << ", N_s " << count;
+      twice += static_cast<int>(count - static_cast<vtkIdType>(clusters.Positions.size()));
       ++cases;
     }
   }
