@@ -174,13 +174,15 @@ int vtkKeyPointError::RequestData(
     (comm.Sum(static_cast<Index>(orig.Ids.size())) == 0 ||
       comm.Sum(static_cast<Index>(simp.Ids.size())) == 0))
   {
-    vtkErrorMacro(<< "One of the clouds has no finite points on any process: nothing to measure.");
+    vtkErrorMacro(<< "One of the clouds has no finite points (not flagged as ghosts or hidden) on "
+                     "any process: nothing to measure.");
     return 1;
   }
   if (!distributed && (orig.Ids.empty() || simp.Ids.empty()))
   {
-    vtkErrorMacro(<< "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
-                  << " cloud has no finite points: nothing to measure.");
+    vtkErrorMacro(
+      << "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
+      << " cloud has no finite points (not flagged as ghosts or hidden): nothing to measure.");
     return 1;
   }
   if (orig.Skipped + simp.Skipped > 0)
