@@ -174,15 +174,17 @@ int vtkKeyPointError::RequestData(
     (comm.Sum(static_cast<Index>(orig.Ids.size())) == 0 ||
       comm.Sum(static_cast<Index>(simp.Ids.size())) == 0))
   {
-    vtkErrorMacro(<< "One of the clouds has no finite points (not flagged as ghosts or hidden) on "
-                     "any process: nothing to measure.");
+    // (A warning, as vtkASMSimplify's: an upstream clip or time step that
+    // leaves nothing is not an error.)
+    vtkWarningMacro(<< "One of the clouds has no finite points (not flagged as ghosts or hidden) "
+                       "on any process: nothing to measure, the outputs are empty.");
     return 1;
   }
   if (!distributed && (orig.Ids.empty() || simp.Ids.empty()))
   {
-    vtkErrorMacro(
-      << "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
-      << " cloud has no finite points (not flagged as ghosts or hidden): nothing to measure.");
+    vtkWarningMacro(<< "The " << (orig.Ids.empty() ? "original (port 0)" : "simplified (port 1)")
+                    << " cloud has no finite points (not flagged as ghosts or hidden): nothing "
+                       "to measure, the outputs are empty.");
     return 1;
   }
   if (orig.Skipped + simp.Skipped > 0)

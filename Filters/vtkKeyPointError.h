@@ -58,8 +58,10 @@
  * points flagged in vtkGhostType as another piece's (DUPLICATEPOINT) or
  * hidden (HIDDENPOINT) are skipped too, as vtkASMSimplify skips them
  * (skipped simplified points get NaN in "Error" and the curvature). A
- * cloud with coordinates beyond 1e100 in magnitude, or all below 1e-100 (but
- * not all 0), is an error with an empty output, as in vtkASMSimplify.
+ * cloud left with no point (empty, or every point skipped) gives a
+ * warning and empty outputs, as in vtkASMSimplify. A cloud with coordinates beyond 1e100 in
+ * magnitude, or all below 1e-100 (but not all 0), is an error with an empty output, as in
+ * vtkASMSimplify.
  *
  * @sa vtkASMSimplify
  */

@@ -367,9 +367,13 @@ TEST(KeyPointError, BadInputs)
 {
   auto sphere = ToPolyData(Sphere(2000, 1.0));
   {
-    ErrorRun run; // empty simplified cloud
+    ErrorRun run; // empty simplified cloud: a warning (as vtkASMSimplify's), empty outputs
     EXPECT_EQ(run.Execute(sphere, vtkNew<vtkPolyData>())->GetNumberOfPoints(), 0);
-    EXPECT_EQ(run.Messages->Errors, 1);
+    EXPECT_EQ(run.Messages->Errors, 0);
+    EXPECT_EQ(run.Messages->Warnings, 1);
+    auto* table = vtkTable::SafeDownCast(run.Filter->GetOutputDataObject(1));
+    ASSERT_NE(table, nullptr);
+    EXPECT_EQ(table->GetNumberOfRows(), 0);
   }
   {
     ErrorRun run; // the inputs swapped: a warning, figures still computed
