@@ -14,8 +14,8 @@
  *   when the mean is zero);
  * - every other array (signed/unsigned 8- to 64-bit integers, char,
  *   vtkIdType, bit, string, variant arrays): the tuple of the sample's
- *   representative input point, the member nearest the cluster centroid
- *   (the id in "vtkOriginalPointIds"). Labels, classes, flags and ids are
+ *   representative input point (the id in "vtkOriginalPointIds": see
+ *   vtkASMSimplify.h). Labels, classes, flags and ids are
  *   never averaged into values no input point has;
  * - with snapping, every array takes the snapped point's tuple.
  *

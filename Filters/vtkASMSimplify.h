@@ -33,17 +33,17 @@
  * arrays averaged (NaN and infinite values ignored, the normals attribute
  * renormalised);
  * integer, id, bit, string and other categorical arrays take the value of the
- * representative point (the member nearest the centroid, see
- * "vtkOriginalPointIds"; among exact duplicates, the one whose values come
- * first), never an average; with SnapToInputPoints on, every array takes the
- * snapped input point's values;
- * "Normals" (float; the cell's PCA normal, oriented to agree with the input normals
+ * representative point (see "vtkOriginalPointIds"; among exact duplicates, the one whose values
+ * come first), never an average; with SnapToInputPoints on, every array takes the snapped input
+ * point's values; "Normals" (float; the cell's PCA normal, oriented to agree with the input normals
  * when there are some, else away from the cloud's centroid; named "PCANormals"
  * if the input already has an array called "Normals"); "KeyPoint" (1 for
  * key-point samples, else 0); "ClusterSize" (input points the sample stands
  * for); "SurfaceVariation" (lambda2 / (lambda0 + lambda1 + lambda2) of the
- * sample's grid cell); "vtkOriginalPointIds" (id of the input point nearest
- * the sample's cluster centroid); with GenerateCurvature (default on),
+ * sample's grid cell); "vtkOriginalPointIds" (id of the input point the
+ * sample stands for: PAPER, the member nearest the cluster centroid;
+ * FEATURE_PRESERVING, a key sample's extreme point, else the member nearest
+ * the sample, its own input point with InputPointSamples); with GenerateCurvature (default on),
  * "MeanCurvature" and "NeighborhoodSurfaceVariation" from the input points
  * around each sample (see vtkKeyPointError for measuring a simplification). Field data: "AKPE" and
  * "MKPE" (mean and maximum distance, in data units, between each key point placed and the extreme
