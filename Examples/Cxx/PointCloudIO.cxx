@@ -7,8 +7,6 @@
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkNew.h"
-#include "vtkPLYReader.h"
-#include "vtkPLYWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkXMLPolyDataReader.h"
@@ -28,18 +26,63 @@ using detail::ParseDouble;
 
 namespace
 {
-/// Parses every field of `fields` as a double; false if one is not a number.
+/// The fields of a text line: split at white space, commas and semicolons,
+/// or, if the line has a semicolon, at semicolons and white space only (a
+/// comma is then a decimal comma, see ParseRow).
+std::vector<std::string> TextFields(const std::string& line)
+{
+  if (line.find(';') == std::string::npos)
+  {
+    return Fields(line);
+  }
+  std::vector<std::string> fields;
+  std::string current;
+  for (char c : line + ";")
+  {
+    if (c == ';' || std::isspace(static_cast<unsigned char>(c)))
+    {
+      if (!current.empty())
+      {
+        fields.push_back(current);
+      }
+      current.clear();
+    }
+    else
+    {
+      current += c;
+    }
+  }
+  return fields;
+}
+
+/// Parses every field of `fields` as a double, ',' read as '.' (a decimal
+/// comma: only lines with ';' have fields with commas); false if one is not
+/// a number.
 bool ParseRow(const std::vector<std::string>& fields, std::vector<double>& row)
 {
   row.resize(fields.size());
   for (std::size_t i = 0; i < fields.size(); ++i)
   {
-    if (!ParseDouble(fields[i], row[i]))
+    std::string text = fields[i];
+    std::replace(text.begin(), text.end(), ',', '.');
+    if (!ParseDouble(text, row[i]))
     {
       return false;
     }
   }
   return true;
+}
+
+/// True if `names` has x, y and z (in any case).
+bool NamesXYZ(const std::vector<std::string>& names)
+{
+  int found = 0;
+  for (const auto& name : names)
+  {
+    const std::string lower = Lower(name);
+    found |= lower == "x" ? 1 : lower == "y" ? 2 : lower == "z" ? 4 : 0;
+  }
+  return found == 7;
 }
 
 /// Turns VTK error events of a reader or writer into a message.
@@ -93,6 +136,7 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
   std::vector<std::vector<double>> columns;
   std::size_t width = 0;
   std::string line;
+  const bool leica = Extension(path) == "pts"; // with point-count lines
   for (std::size_t lineNumber = 1; std::getline(in, line); ++lineNumber)
   {
     const auto hash = line.find('#');
@@ -100,12 +144,17 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
     {
       line.erase(hash);
     }
-    const auto fields = Fields(line);
+    const auto fields = TextFields(line);
     if (fields.empty())
     {
       continue;
     }
     const bool numeric = ParseRow(fields, row);
+    long long count = 0;
+    if (leica && fields.size() == 1 && detail::StrictInt64(fields[0], count))
+    {
+      continue; // the number of points of the file or of the next scan
+    }
     if (width == 0)
     {
       if (!numeric)
@@ -121,6 +170,12 @@ vtkSmartPointer<vtkPolyData> ReadText(const std::string& path, std::string& erro
       }
       width = row.size();
       columns.assign(width, {});
+      if (header.size() != width && NamesXYZ(header))
+      {
+        error = path + ":" + std::to_string(lineNumber) + ": " + std::to_string(width) +
+          " numbers, but the header names " + std::to_string(header.size()) + " columns";
+        return nullptr;
+      }
     }
     if (!numeric || row.size() != width)
     {
@@ -190,22 +245,15 @@ vtkSmartPointer<vtkPolyData> ReadPointCloud(const std::string& path, std::string
   }
   const std::string ext = Extension(path);
   vtkSmartPointer<vtkPolyData> cloud;
-  if (ext == "ply" || ext == "vtp")
+  if (ext == "ply")
+  {
+    cloud = ReadPLY(path, error); // not vtkPLYReader: see PLYFormat.cxx
+  }
+  else if (ext == "vtp")
   {
     vtkNew<ErrorCatcher> errors;
-    vtkSmartPointer<vtkAlgorithm> reader;
-    if (ext == "ply")
-    {
-      auto ply = vtkSmartPointer<vtkPLYReader>::New();
-      ply->SetFileName(path.c_str());
-      reader = ply;
-    }
-    else
-    {
-      auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-      xml->SetFileName(path.c_str());
-      reader = xml;
-    }
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(path.c_str());
     // The reader's messages become `error`; the executive's "returned
     // failure" dumps and the reader's warnings are not printed.
     vtkNew<ErrorCatcher> quiet;
@@ -255,13 +303,7 @@ bool WritePointCloud(vtkPolyData* cloud, const std::string& path, std::string& e
   int ok = 0;
   if (ext == "ply")
   {
-    vtkNew<vtkPLYWriter> writer;
-    writer->SetFileName(path.c_str());
-    writer->SetFileTypeToBinary();
-    writer->SetInputData(cloud);
-    writer->AddObserver(vtkCommand::ErrorEvent, errors);
-    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
-    ok = writer->Write();
+    return WritePLY(cloud, path, error); // all the arrays, unlike vtkPLYWriter
   }
   else if (ext == "vtp")
   {

@@ -62,6 +62,35 @@ inline bool ParseDouble(const std::string& text, double& value)
   return end != begin && *end == '\0' && errno != ERANGE;
 }
 
+/// A whole base-10 integer (optional sign; no blanks, no junk after it) that
+/// fits a long long.
+inline bool StrictInt64(const std::string& text, long long& value)
+{
+  if (text.empty() ||
+    !(std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-' || text[0] == '+'))
+  {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtoll(text.c_str(), &end, 10);
+  return end != text.c_str() && *end == '\0' && errno != ERANGE;
+}
+
+/// A whole unsigned base-10 integer (digits only: no sign) that fits an
+/// unsigned long long.
+inline bool StrictUInt64(const std::string& text, unsigned long long& value)
+{
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0])))
+  {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtoull(text.c_str(), &end, 10);
+  return *end == '\0' && errno != ERANGE;
+}
+
 /// One vertex per point: what ParaView and the ASM filters expect of a cloud.
 inline vtkSmartPointer<vtkPolyData> MakeCloud(vtkPoints* points)
 {

@@ -3,6 +3,7 @@
 // here, in the directory given as the first argument.
 //   TestPointCloudIO <scratch-dir>
 #include "PointCloudIO.h"
+#include "TestCheck.h"
 
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
@@ -13,29 +14,14 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <string>
 
 namespace
 {
-int Failures = 0;
-std::string Dir = ".";
-
-#define CHECK(condition)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(condition))                                                                              \
-    {                                                                                              \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": CHECK failed: " #condition "\n";              \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
-
-std::string Write(const std::string& name, const std::string& content)
-{
-  const std::string path = Dir + "/" + name;
-  std::ofstream(path, std::ios::binary) << content;
-  return path;
-}
+using exampletest::Dir;
+using exampletest::Failures;
+using exampletest::Write;
 
 bool Near(double a, double b)
 {
@@ -47,6 +33,18 @@ bool PointIs(vtkPolyData* cloud, vtkIdType i, double x, double y, double z)
   double p[3];
   cloud->GetPoint(i, p);
   return Near(p[0], x) && Near(p[1], y) && Near(p[2], z);
+}
+
+/// True if a read failed with an error containing `expected`; else prints what it got.
+bool Fails(vtkPolyData* cloud, const std::string& error, const std::string& expected)
+{
+  if (cloud || error.find(expected) == std::string::npos)
+  {
+    std::cerr << "  expected an error with '" << expected << "', got "
+              << (cloud ? "a cloud" : "'" + error + "'") << "\n";
+    return false;
+  }
+  return true;
 }
 
 void TestText()
@@ -217,6 +215,282 @@ void TestCompressedPCD()
   }
   cloud = pcio::ReadPCD(Write("compressed-cut.pcd", file.substr(0, file.size() - 4)), error);
   CHECK(!cloud && error.find("bad binary_compressed") != std::string::npos);
+  cloud = pcio::ReadPCD(Write("compressed-more.pcd", file + "x"), error);
+  CHECK(Fails(cloud, error, "more PCD data than the 3 points of the header"));
+}
+
+/// A PCD header with WIDTH and POINTS given as text (HEIGHT 1).
+std::string PCDHeaderN(const std::string& fields, const std::string& sizes,
+  const std::string& types, const std::string& counts, const std::string& n,
+  const std::string& data)
+{
+  return "VERSION 0.7\nFIELDS " + fields + "\nSIZE " + sizes + "\nTYPE " + types + "\nCOUNT " +
+    counts + "\nWIDTH " + n + "\nHEIGHT 1\nPOINTS " + n + "\nDATA " + data + "\n";
+}
+
+/// Malformed PCD headers and data (review A1-A5, A10, A11): errors, never a
+/// crash, an exception or a huge allocation.
+void TestPCDMalformed()
+{
+  std::string error;
+  // A1: 12 * (2^62 + 1) wraps to 12 = the uncompressed size in 64 bits.
+  std::string file =
+    PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "4611686018427387905", "binary_compressed");
+  Append<std::uint32_t>(file, 13);
+  Append<std::uint32_t>(file, 12);
+  file += LZFLiterals(std::string(12, '\0'));
+  auto cloud = pcio::ReadPCD(Write("comp-wrap.pcd", file), error);
+  CHECK(Fails(cloud, error, "not 4611686018427387905 points of 12 bytes"));
+  // A2: POINTS far beyond the data, binary, ascii and compressed.
+  file = PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "1000000000000", "binary");
+  for (int i = 0; i < 7; ++i)
+    Append<float>(file, 1.0f);
+  cloud = pcio::ReadPCD(Write("huge-bin.pcd", file), error);
+  CHECK(Fails(cloud, error, "ends after 2 of 1000000000000 points"));
+  cloud = pcio::ReadPCD(
+    Write("huge-ascii.pcd",
+      PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "1000000000000", "ascii") + "1 2 3\n"),
+    error);
+  CHECK(Fails(cloud, error, "ends after 1 of 1000000000000 points"));
+  file = PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "1", "binary_compressed");
+  Append<std::uint32_t>(file, 0xFFFFFFF0u);
+  Append<std::uint32_t>(file, 12);
+  file += LZFLiterals(std::string(12, '\0'));
+  cloud = pcio::ReadPCD(Write("comp-huge-csize.pcd", file), error);
+  CHECK(Fails(cloud, error, "bad binary_compressed PCD data (truncated)"));
+  file = PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "357913941", "binary_compressed");
+  Append<std::uint32_t>(file, 2);
+  Append<std::uint32_t>(file, 357913941u * 12u); // more than LZF can expand 2 bytes to
+  file += LZFLiterals("a");
+  cloud = pcio::ReadPCD(Write("comp-ratio.pcd", file), error);
+  CHECK(Fails(cloud, error, "bad binary_compressed PCD data (corrupt LZF)"));
+  // A3: absurd COUNT and SIZE.
+  cloud = pcio::ReadPCD(
+    Write("count-huge.pcd",
+      PCDHeaderN("x y z i", "4 4 4 8", "F F F F", "1 1 1 1000000000", "1", "ascii") + "1 2 3 4\n"),
+    error);
+  CHECK(Fails(cloud, error, "bad PCD field i (SIZE 8, TYPE F, COUNT 1000000000"));
+  cloud =
+    pcio::ReadPCD(Write("count-overflow.pcd",
+                    PCDHeaderN("x y z i", "4 4 4 8", "F F F F", "1 1 1 2147483647", "1", "binary") +
+                      std::string(64, '\0')),
+      error);
+  CHECK(Fails(cloud, error, "bad PCD field i"));
+  cloud = pcio::ReadPCD(
+    Write("size-3.pcd", PCDHeaderN("x y z", "4 4 3", "F F F", "1 1 1", "1", "ascii") + "1 2 3\n"),
+    error);
+  CHECK(Fails(cloud, error, "bad PCD field z (SIZE 3"));
+  cloud = pcio::ReadPCD(
+    Write("count-0.pcd", PCDHeaderN("x y z", "4 4 4", "F F F", "1 0 1", "1", "ascii") + "1 2 3\n"),
+    error);
+  CHECK(Fails(cloud, error, "bad PCD field y"));
+  // A4, A5: WIDTH x HEIGHT overflowing or not POINTS.
+  std::string header = PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "1", "ascii");
+  auto replace = [](std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+  };
+  cloud = pcio::ReadPCD(
+    Write("wh-overflow.pcd",
+      replace(replace(header, "WIDTH 1", "WIDTH 4611686018427387904"), "HEIGHT 1", "HEIGHT 4") +
+        "1 2 3\n"),
+    error);
+  CHECK(Fails(cloud, error, "WIDTH x HEIGHT is too large"));
+  cloud = pcio::ReadPCD(
+    Write("wh-mismatch.pcd", replace(header, "HEIGHT 1", "HEIGHT 2") + "1 2 3\n4 5 6\n"), error);
+  CHECK(Fails(cloud, error, "WIDTH x HEIGHT (1 x 2) is not POINTS (1)"));
+  // Organized: WIDTH x HEIGHT = POINTS; POINTS alone; WIDTH alone.
+  cloud = pcio::ReadPCD(
+    Write("organized.pcd",
+      replace(replace(replace(header, "HEIGHT 1", "HEIGHT 2"), "POINTS 1", "POINTS 2"), "WIDTH 1",
+        "WIDTH 1") +
+        "1 2 3\n4 5 6\n"),
+    error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 2 && PointIs(cloud, 1, 4, 5, 6));
+  cloud = pcio::ReadPCD(Write("no-width.pcd", replace(header, "WIDTH 1\n", "") + "1 2 3\n"), error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 1);
+  cloud =
+    pcio::ReadPCD(Write("no-points.pcd", replace(header, "POINTS 1\n", "") + "1 2 3\n"), error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 1);
+  // A5: data after the declared points (ascii and binary) is an error;
+  // blank lines after ascii data are not.
+  cloud = pcio::ReadPCD(Write("extra.pcd", header + "1 2 3\n4 5 6\n"), error);
+  CHECK(Fails(cloud, error, "more PCD data than the 1 points of the header"));
+  cloud = pcio::ReadPCD(Write("blank-end.pcd", header + "1 2 3\n\n  \n"), error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 1);
+  file = PCDHeaderN("x y z", "4 4 4", "F F F", "1 1 1", "1", "binary");
+  for (int i = 0; i < 4; ++i)
+    Append<float>(file, 1.0f);
+  cloud = pcio::ReadPCD(Write("extra-bin.pcd", file), error);
+  CHECK(Fails(cloud, error, "more PCD data than the 1 points"));
+  // An ascii line with more values than the fields have.
+  cloud = pcio::ReadPCD(Write("wide-line.pcd", header + "1 2 3 4\n"), error);
+  CHECK(Fails(cloud, error, "wide-line.pcd:10: 4 values, the PCD fields have 3"));
+  // A10: duplicate fields.
+  cloud = pcio::ReadPCD(
+    Write("dup-x.pcd",
+      PCDHeaderN("x X y z", "4 4 4 4", "F F F F", "1 1 1 1", "1", "ascii") + "1 2 3 4\n"),
+    error);
+  CHECK(Fails(cloud, error, "the PCD field X appears twice"));
+  cloud = pcio::ReadPCD(
+    Write("dup-i.pcd",
+      PCDHeaderN("x y z i i", "4 4 4 4 4", "F F F F F", "1 1 1 1 1", "1", "ascii") + "1 2 3 4 5\n"),
+    error);
+  CHECK(Fails(cloud, error, "the PCD field i appears twice"));
+  cloud = pcio::ReadPCD(
+    Write("dup-rgb.pcd",
+      PCDHeaderN("x y z rgb RGBA", "4 4 4 4 4", "F F F F U", "1 1 1 1 1", "1", "ascii") +
+        "1 2 3 4 5\n"),
+    error);
+  CHECK(Fails(cloud, error, "the PCD field RGBA appears twice"));
+  // Fields differing only in case are distinct arrays; padding "_" may repeat.
+  cloud = pcio::ReadPCD(
+    Write("case.pcd",
+      PCDHeaderN("x y z i I _ _", "4 4 4 4 4 1 1", "F F F F F U U", "1 1 1 1 1 1 1", "1", "ascii") +
+        "1 2 3 4 5 0 0\n"),
+    error);
+  CHECK(cloud && cloud->GetPointData()->GetArray("i") && cloud->GetPointData()->GetArray("I") &&
+    cloud->GetPointData()->GetArray("I")->GetTuple1(0) == 5);
+  // A11: junk after numbers in the header.
+  cloud =
+    pcio::ReadPCD(Write("size-junk.pcd",
+                    PCDHeaderN("x y z", "4abc 4 4", "F F F", "1 1 1", "1", "ascii") + "1 2 3\n"),
+      error);
+  CHECK(Fails(cloud, error, "bad PCD field x (SIZE 4abc"));
+  cloud =
+    pcio::ReadPCD(Write("type-junk.pcd",
+                    PCDHeaderN("x y z", "4 4 4", "Float F F", "1 1 1", "1", "ascii") + "1 2 3\n"),
+      error);
+  CHECK(Fails(cloud, error, "bad PCD field x"));
+  cloud = pcio::ReadPCD(
+    Write("points-junk.pcd", replace(header, "POINTS 1", "POINTS 1.5") + "1 2 3\n"), error);
+  CHECK(Fails(cloud, error, "points-junk.pcd:8: bad PCD points '1.5'"));
+  cloud = pcio::ReadPCD(
+    Write("width-neg.pcd", replace(header, "WIDTH 1", "WIDTH -1") + "1 2 3\n"), error);
+  CHECK(Fails(cloud, error, "bad PCD width '-1'"));
+  cloud = pcio::ReadPCD(
+    Write("two-fields.pcd", replace(header, "SIZE", "FIELDS a\nSIZE") + "1 2 3\n"), error);
+  CHECK(Fails(cloud, error, "a second fields line"));
+}
+
+/// ASCII PCD values checked against their type (review A6-A9).
+void TestPCDValues()
+{
+  std::string error;
+  // A6: a packed colour written by PCL as an unsigned integer, TYPE F or U;
+  // a float token gives the bits of the float; TYPE I may be negative.
+  auto cloud =
+    pcio::ReadPCD(Write("rgb-int.pcd",
+                    PCDHeaderN("x y z rgb", "4 4 4 4", "F F F F", "1 1 1 1", "3", "ascii") +
+                      "1 2 3 4294934528\n4 5 6 4278255360\n7 8 9 1.5\n"),
+      error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 3);
+  if (cloud)
+  {
+    vtkDataArray* rgb = cloud->GetPointData()->GetArray("RGB");
+    CHECK(rgb && rgb->GetComponent(0, 0) == 255 && rgb->GetComponent(0, 1) == 128 &&
+      rgb->GetComponent(0, 2) == 0);
+    CHECK(rgb && rgb->GetComponent(1, 0) == 0 && rgb->GetComponent(1, 1) == 255 &&
+      rgb->GetComponent(1, 2) == 0);
+    CHECK(rgb && rgb->GetComponent(2, 0) == 0xC0 && rgb->GetComponent(2, 1) == 0 &&
+      rgb->GetComponent(2, 2) == 0); // 1.5f is 0x3FC00000
+  }
+  cloud = pcio::ReadPCD(
+    Write("rgb-i4.pcd",
+      PCDHeaderN("x y z rgba", "4 4 4 4", "F F F I", "1 1 1 1", "1", "ascii") + "1 2 3 -32768\n"),
+    error);
+  CHECK(cloud && cloud->GetPointData()->GetArray("RGB") &&
+    cloud->GetPointData()->GetArray("RGB")->GetComponent(0, 0) == 255 &&
+    cloud->GetPointData()->GetArray("RGB")->GetComponent(0, 1) == 128);
+  // A7: a packed colour out of range.
+  const std::string rgbU = PCDHeaderN("x y z rgb", "4 4 4 4", "F F F U", "1 1 1 1", "1", "ascii");
+  const std::string rgbF = PCDHeaderN("x y z rgb", "4 4 4 4", "F F F F", "1 1 1 1", "1", "ascii");
+  cloud = pcio::ReadPCD(Write("rgb-neg.pcd", rgbU + "1 2 3 -5\n"), error);
+  CHECK(Fails(cloud, error, "rgb-neg.pcd:10: bad value '-5' of PCD field rgb (U4 packed colour)"));
+  cloud = pcio::ReadPCD(Write("rgb-big.pcd", rgbU + "1 2 3 4294967296\n"), error);
+  CHECK(Fails(cloud, error, "bad value '4294967296' of PCD field rgb"));
+  cloud = pcio::ReadPCD(Write("rgb-1e300.pcd", rgbF + "1 2 3 1e300\n"), error);
+  CHECK(Fails(cloud, error, "bad value '1e300' of PCD field rgb"));
+  // A8: integer fields out of range or not integers; the line is named.
+  const std::string u1 = PCDHeaderN("x y z i", "4 4 4 1", "F F F U", "1 1 1 1", "2", "ascii");
+  for (const char* bad : { "300", "-1", "nan", "1.5", "2x" })
+  {
+    cloud = pcio::ReadPCD(Write("u1.pcd", u1 + "0 0 0 255\n\n1 2 3 " + bad + "\n"), error);
+    CHECK(
+      Fails(cloud, error, "u1.pcd:12: bad value '" + std::string(bad) + "' of PCD field i (U1)"));
+  }
+  const std::string i2 = PCDHeaderN("x y z i", "4 4 4 2", "F F F I", "1 1 1 1", "1", "ascii");
+  cloud = pcio::ReadPCD(Write("i2.pcd", i2 + "1 2 3 -32769\n"), error);
+  CHECK(Fails(cloud, error, "bad value '-32769' of PCD field i (I2)"));
+  cloud = pcio::ReadPCD(Write("i2-ok.pcd", i2 + "1 2 3 -32768\n"), error);
+  CHECK(cloud && cloud->GetPointData()->GetArray("i")->GetTuple1(0) == -32768);
+  cloud = pcio::ReadPCD(Write("f4-range.pcd", rgbF + "1e39 2 3 0\n"), error);
+  CHECK(Fails(cloud, error, "bad value '1e39' of PCD field x (F4)"));
+  // A9: 64-bit integers exactly, ascii and binary.
+  const std::uint64_t big = (std::uint64_t(1) << 53) + 1;
+  const std::int64_t negative = -static_cast<std::int64_t>(big);
+  std::string file = PCDHeaderN("x y z id n", "4 4 4 8 8", "F F F U I", "1 1 1 1 1", "2", "ascii") +
+    "1 2 3 " + std::to_string(big) + " " + std::to_string(negative) +
+    "\n1 2 3 18446744073709551615 -9223372036854775808\n";
+  for (int binary = 0; binary < 2; ++binary)
+  {
+    if (binary)
+    {
+      file = PCDHeaderN("x y z id n", "4 4 4 8 8", "F F F U I", "1 1 1 1 1", "2", "binary");
+      for (int i = 0; i < 2; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+          Append<float>(file, 1.0f);
+        Append<std::uint64_t>(file, i ? ~std::uint64_t(0) : big);
+        Append<std::int64_t>(file, i ? std::numeric_limits<std::int64_t>::min() : negative);
+      }
+    }
+    cloud = pcio::ReadPCD(Write("int64.pcd", file), error);
+    vtkDataArray* id = cloud ? cloud->GetPointData()->GetArray("id") : nullptr;
+    vtkDataArray* n = cloud ? cloud->GetPointData()->GetArray("n") : nullptr;
+    CHECK(id && id->GetDataTypeSize() == 8 && id->GetDataType() != VTK_DOUBLE && n &&
+      n->GetDataTypeSize() == 8 && n->GetDataType() != VTK_DOUBLE);
+    if (id && n && id->GetDataTypeSize() == 8 && n->GetDataTypeSize() == 8)
+    {
+      std::uint64_t ids[2];
+      std::int64_t ns[2];
+      std::memcpy(ids, id->GetVoidPointer(0), 16);
+      std::memcpy(ns, n->GetVoidPointer(0), 16);
+      CHECK(ids[0] == big && ids[1] == ~std::uint64_t(0));
+      CHECK(ns[0] == negative && ns[1] == std::numeric_limits<std::int64_t>::min());
+    }
+  }
+  cloud = pcio::ReadPCD(Write("u8-over.pcd",
+                          PCDHeaderN("x y z id", "4 4 4 8", "F F F U", "1 1 1 1", "1", "ascii") +
+                            "1 2 3 18446744073709551616\n"),
+    error);
+  CHECK(Fails(cloud, error, "bad value '18446744073709551616' of PCD field id (U8)"));
+}
+
+/// Leica .pts count lines, decimal commas with ';' (review C1, C2).
+void TestTextFormats()
+{
+  std::string error;
+  // C1: a .pts file starts with its point count, and each scan with its own.
+  auto cloud = pcio::ReadPointCloud(Write("leica.pts",
+                                      "3\n1 2 3 50 255 0 0\n4 5 6 50 0 255 0\n7 8 9 50 0 0 255\n"
+                                      "1\n10 11 12 50 1 1 1\n"),
+    error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 4 && PointIs(cloud, 3, 10, 11, 12));
+  // ... but not in .xyz files.
+  cloud = pcio::ReadPointCloud(Write("count.xyz", "1\n1 2 3\n"), error);
+  CHECK(Fails(cloud, error, "count.xyz:1: a point needs at least 3 numbers"));
+  // C2: ';' separates the fields, ',' is then a decimal comma.
+  cloud = pcio::ReadPointCloud(Write("euro.csv", "x;y;z;w\n1,5;2,5;3,5;-0,25\n4;5;6;7\n"), error);
+  CHECK(cloud && cloud->GetNumberOfPoints() == 2 && PointIs(cloud, 0, 1.5, 2.5, 3.5) &&
+    PointIs(cloud, 1, 4, 5, 6));
+  CHECK(cloud && cloud->GetPointData()->GetArray("w") &&
+    Near(cloud->GetPointData()->GetArray("w")->GetTuple1(0), -0.25));
+  // A header naming x y z that does not have as many fields as the data.
+  cloud = pcio::ReadPointCloud(Write("euro-comma.csv", "x,y,z\n1,5,2,5,3,5\n"), error);
+  CHECK(Fails(cloud, error, "euro-comma.csv:2: 6 numbers, but the header names 3 columns"));
+  // A row of another width names its line.
+  cloud = pcio::ReadPointCloud(Write("ragged.csv", "1;2;3\n4;5;6;7\n"), error);
+  CHECK(Fails(cloud, error, "ragged.csv:2: expected 3 numbers"));
 }
 
 void TestDispatchAndRoundTrip()
@@ -254,6 +528,9 @@ int main(int argc, char* argv[])
   TestText();
   TestPCD();
   TestCompressedPCD();
+  TestPCDMalformed();
+  TestPCDValues();
+  TestTextFormats();
   TestDispatchAndRoundTrip();
   if (Failures)
   {

@@ -5,7 +5,7 @@
 //   asm_simplify IN OUT [--fraction F | --count N] [--tolerance EPS]
 //                [--relative] [--alpha A] [--seed S] [--no-curvature]
 //
-// IN: .ply .vtp .xyz/.txt/.csv/.pts/.asc (text) .pcd (ascii, binary);
+// IN: .ply .vtp .xyz/.txt/.csv/.pts/.asc (text) .pcd (ascii, binary, binary_compressed);
 // OUT: .ply or .vtp. Prints N, N_s, the filter's run time and its AKPE/MKPE.
 // Exit status: 0 on success, 1 on bad arguments, 2 when IN cannot be read or
 // OUT cannot be written, 3 when the filter fails.
@@ -19,11 +19,14 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <string>
 
 namespace
@@ -31,14 +34,14 @@ namespace
 const char* const Usage =
   "usage: asm_simplify IN OUT [--fraction F | --count N] [--tolerance EPS] [--relative]\n"
   "                    [--alpha A] [--seed S] [--no-curvature]\n"
-  "  IN   point cloud: .ply .vtp .xyz .txt .csv .pts .asc .pcd (ascii or binary)\n"
+  "  IN   point cloud: .ply .vtp .xyz .txt .csv .pts .asc .pcd\n"
   "  OUT  simplified cloud: .ply or .vtp\n"
   "  --fraction F   keep N_s = round(F * N) points, 0 <= F <= 1 (default 0.05)\n"
-  "  --count N      keep exactly N points\n"
+  "  --count N      keep exactly N points (a whole number)\n"
   "  --tolerance E  bound the maximum key point error MKPE by E (data units; off by default)\n"
   "  --relative     E is a fraction of the bounding-box diagonal\n"
   "  --alpha A      partition threshold alpha in [0, 0.5] (default 0.125)\n"
-  "  --seed S       random seed (default 1)\n"
+  "  --seed S       random seed, a whole number that fits an int (default 1)\n"
   "  --no-curvature do not add the MeanCurvature arrays (faster)\n";
 
 /// Errors of the filter (and of VTK) as text on stderr, counted.
@@ -60,11 +63,19 @@ double FieldValue(vtkPolyData* data, const char* name)
   return array && array->GetNumberOfTuples() > 0 ? array->GetTuple1(0) : -1.0;
 }
 
+/// A finite number (no inf, nan, or overflow), the whole text.
 bool ParseNumber(const char* text, double& value)
 {
   char* end = nullptr;
+  errno = 0;
   value = std::strtod(text, &end);
-  return end != text && *end == '\0';
+  return end != text && *end == '\0' && errno != ERANGE && std::isfinite(value);
+}
+
+/// True if `value` is a whole number in [low, high].
+bool IsWhole(double value, double low, double high)
+{
+  return value >= low && value <= high && value == std::floor(value);
 }
 } // namespace
 
@@ -91,7 +102,7 @@ int main(int argc, char* argv[])
       double value = 0;
       if (i + 1 >= argc || !ParseNumber(argv[i + 1], value))
       {
-        std::cerr << "asm_simplify: " << arg << " needs a number\n" << Usage;
+        std::cerr << "asm_simplify: " << arg << " needs a finite number\n" << Usage;
         return 1;
       }
       ++i;
@@ -100,7 +111,7 @@ int main(int argc, char* argv[])
         asmFilter->SetTargetModeToOutputFraction();
         asmFilter->SetOutputFraction(value);
       }
-      else if (arg == "--count" && value >= 0)
+      else if (arg == "--count" && IsWhole(value, 0, 9007199254740992.0)) // 2^53
       {
         asmFilter->SetTargetModeToNumberOfOutputPoints();
         asmFilter->SetNumberOfOutputPoints(static_cast<vtkIdType>(value));
@@ -109,7 +120,8 @@ int main(int argc, char* argv[])
         asmFilter->SetErrorTolerance(value);
       else if (arg == "--alpha" && value >= 0 && value <= 0.5)
         asmFilter->SetAlpha(value);
-      else if (arg == "--seed")
+      else if (arg == "--seed" &&
+        IsWhole(value, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()))
         asmFilter->SetRandomSeed(static_cast<int>(value));
       else
       {
