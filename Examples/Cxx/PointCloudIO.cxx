@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <exception>
 #include <fstream>
 #include <vector>
 
@@ -277,7 +278,15 @@ vtkSmartPointer<vtkPolyData> ReadPointCloud(const std::string& path, std::string
   }
   else if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "pts" || ext == "asc")
   {
-    cloud = ReadText(path, error);
+    try // (out of memory on a huge text file: an error, as the other readers give)
+    {
+      cloud = ReadText(path, error);
+    }
+    catch (const std::exception& e)
+    {
+      error = path + ": " + e.what();
+      return nullptr;
+    }
   }
   else if (ext == "pcd")
   {
