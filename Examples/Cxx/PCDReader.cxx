@@ -332,6 +332,12 @@ vtkSmartPointer<vtkPolyData> ReadPCDFile(const std::string& path, std::string& e
     remaining = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg() - dataStart, 0));
     in.seekg(dataStart);
   }
+  // A point the data cannot hold (a short header of huge COUNTs): refused
+  // before a record or an array is allocated.
+  if ((data == "binary" && stride > remaining) ||
+    (data == "ascii" && 2 * valuesPerPoint > remaining + 1))
+    return fail("the PCD data (" + std::to_string(remaining) + " bytes) cannot hold one point of " +
+      std::to_string(stride) + " bytes (" + std::to_string(valuesPerPoint) + " values)");
   // binary_compressed: LZF-compressed, one field after the other (all x,
   // then all y, ...); unpacked here into records as in DATA binary.
   std::vector<unsigned char> records;
@@ -345,8 +351,9 @@ vtkSmartPointer<vtkPolyData> ReadPCDFile(const std::string& path, std::string& e
       return fail(
         what + "not " + std::to_string(n) + " points of " + std::to_string(stride) + " bytes)");
     std::vector<unsigned char> packed(sizes2[0]), fieldMajor;
+    if (sizes2[1] > LZFMaxRatio * static_cast<std::uint64_t>(sizes2[0]))
+      return fail(what + "more than LZF can expand " + std::to_string(sizes2[0]) + " bytes to)");
     if (!in.read(reinterpret_cast<char*>(packed.data()), sizes2[0]) ||
-      sizes2[1] > LZFMaxRatio * static_cast<std::uint64_t>(sizes2[0]) ||
       !LZFDecompress(packed, sizes2[1], fieldMajor))
       return fail(what + "corrupt LZF)");
     records.resize(fieldMajor.size());

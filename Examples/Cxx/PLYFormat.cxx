@@ -298,7 +298,9 @@ vtkSmartPointer<vtkPolyData> Reader::ReadVertices()
 
   // Where each property goes: a component of the points, of Normals, of
   // RGB(A), or an array of its own.
-  std::vector<std::pair<vtkDataArray*, int>> targets(properties.size(), { nullptr, 0 });
+  // (Smart pointers: an array stays alive whatever later happens to the point data.)
+  std::vector<std::pair<vtkSmartPointer<vtkDataArray>, int>> targets(
+    properties.size(), { nullptr, 0 });
   vtkNew<vtkPoints> points;
   points->SetDataType(NeedsDouble(properties[xyz[0]].ValueType, properties[xyz[1]].ValueType,
                         properties[xyz[2]].ValueType)
@@ -352,10 +354,11 @@ vtkSmartPointer<vtkPolyData> Reader::ReadVertices()
     auto array =
       vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(VtkType(properties[p].ValueType)));
     std::string name = properties[p].Name;
-    while ((name == "Normals" || name == "RGB" || name == "RGBA") &&
-      pointData->GetAbstractArray(name.c_str()))
+    // Not to replace the normals, the colours or an array added before
+    // (a property "Normals" renamed "Normals_" next to a property "Normals_").
+    while (pointData->GetAbstractArray(name.c_str()))
     {
-      name += "_"; // not to replace the normals or colours
+      name += "_";
     }
     array->SetName(name.c_str());
     array->SetNumberOfTuples(n);

@@ -89,10 +89,11 @@ bool PlyType(vtkDataArray* array, Type& type)
   }
 }
 
-/// `name` with white space and control characters replaced by '_'.
+/// `name` with white space and control characters replaced by '_', and cut
+/// to 200 characters (VTK 9.2's vtkPLYReader misreads lines of about 4090).
 std::string SafeName(const std::string& name)
 {
-  std::string safe = name.empty() ? "array" : name;
+  std::string safe = name.empty() ? "array" : name.substr(0, 200);
   for (char& c : safe)
   {
     if (std::isspace(static_cast<unsigned char>(c)) || std::iscntrl(static_cast<unsigned char>(c)))
@@ -134,7 +135,7 @@ bool WritePLY(vtkPolyData* cloud, const std::string& path, std::string& error)
     {
       normals = pointData->GetArray("Normals");
     }
-    if (normals && normals->GetNumberOfComponents() == 3)
+    if (normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == n)
     {
       const Type type = normals->GetDataType() == VTK_FLOAT ? Type::Float : Type::Double;
       for (int c = 0; c < 3; ++c)
@@ -151,7 +152,8 @@ bool WritePLY(vtkPolyData* cloud, const std::string& path, std::string& error)
     {
       vtkDataArray* array = pointData ? pointData->GetArray(name) : nullptr;
       if (!colours && array && array->GetDataType() == VTK_UNSIGNED_CHAR &&
-        array->GetNumberOfComponents() == static_cast<int>(std::strlen(name)))
+        array->GetNumberOfComponents() == static_cast<int>(std::strlen(name)) &&
+        array->GetNumberOfTuples() == n)
       {
         colours = array;
         const char* channels[] = { "red", "green", "blue", "alpha" };
@@ -178,6 +180,13 @@ bool WritePLY(vtkPolyData* cloud, const std::string& path, std::string& error)
       }
     }
 
+    if (columns.size() > MaxProperties) // (ReadPLY would refuse the file)
+    {
+      error = "cannot write " + path + ": " + std::to_string(columns.size()) +
+        " properties, more than the " + std::to_string(MaxProperties) +
+        " a PLY vertex may have here (write .vtp)";
+      return false;
+    }
     std::ofstream out(path, std::ios::binary);
     if (!out)
     {

@@ -27,7 +27,8 @@
  *   float; TYPE I may also be a negative int32). The header is checked
  *   strictly: SIZE 1 2 4 8 (F: 4 8), TYPE F I U, COUNT 1 to 2^20, WIDTH,
  *   HEIGHT, POINTS whole numbers >= 0 without trailing junk; WIDTH x HEIGHT
- *   must be POINTS when both are given; each header line at most once; field
+ *   must be POINTS when both are given; each header line but VERSION and
+ *   VIEWPOINT (not used) at most once; field
  *   names unique (x, y, z, rgb in any case, rgba counting as rgb; other names
  *   case-sensitive; the padding "_" may repeat). POINTS is checked against
  *   the size of the file before anything is allocated; ascii values must be
@@ -78,7 +79,8 @@ vtkSmartPointer<vtkPolyData> ReadPCD(const std::string& path, std::string& error
 /// the property, of its own type. The header (at most 1 MiB, 4096
 /// properties an element) is checked strictly, element counts against the
 /// size of the file, ascii values against their type (one record a line);
-/// a file shorter than its header declares is an error.
+/// a file shorter than its vertices (and the elements before them) need is
+/// an error; the elements after the vertices (faces) are not read.
 vtkSmartPointer<vtkPolyData> ReadPLY(const std::string& path, std::string& error);
 
 /// Writes binary little-endian PLY: element vertex with x y z (float, or

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -59,7 +60,8 @@ inline bool ParseDouble(const std::string& text, double& value)
   char* end = nullptr;
   errno = 0;
   value = std::strtod(begin, &end);
-  return end != begin && *end == '\0' && errno != ERANGE;
+  // (An underflow, a subnormal such as 1e-310, is a value; an overflow is not.)
+  return end != begin && *end == '\0' && !(errno == ERANGE && std::abs(value) > 1);
 }
 
 /// A whole base-10 integer (optional sign; no blanks, no junk after it) that

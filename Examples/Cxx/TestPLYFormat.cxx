@@ -189,6 +189,22 @@ void TestValid()
       1, "property int x\nproperty int y\nproperty int z\n", "16777217 -2147483648 2147483647\n"),
     error);
   CHECK(cloud && cloud->GetPoint(0)[0] == 16777217 && cloud->GetPoint(0)[1] == -2147483648.0);
+  // Renamed properties do not replace arrays ("Normals" is taken by nx ny nz,
+  // and "Normals_" by the property of that name: freed while still written to).
+  for (const char* taken : { "Normals", "RGB" })
+  {
+    const std::string t = taken;
+    const std::string extra = t == "Normals"
+      ? "property float nx\nproperty float ny\nproperty float nz\n"
+      : "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    cloud = Read("taken-" + t + ".ply",
+      Ascii(1, XYZ + extra + "property float " + t + "_\nproperty float " + t + "\n",
+        "1 2 3 0 0 1 7 8\n"),
+      error);
+    CHECK(cloud && cloud->GetPointData()->GetNumberOfArrays() == 3 &&
+      cloud->GetPointData()->GetArray((t + "_").c_str())->GetTuple1(0) == 7 &&
+      cloud->GetPointData()->GetArray((t + "__").c_str())->GetTuple1(0) == 8);
+  }
   cloud = Read("float.ply", Ascii(1, XYZ, "0.1 2 3\n"), error);
   CHECK(cloud && cloud->GetPoints()->GetDataType() == VTK_FLOAT);
 
@@ -328,6 +344,40 @@ void TestRoundTrip()
   back = pcio::ReadPLY(path, error);
   CHECK(back && back->GetNumberOfPoints() == 0);
   CHECK(!pcio::WritePLY(empty, Dir + "/no-such-dir/x.ply", error) && !error.empty());
+
+  // Short normals and colours are not written (they were read past their end).
+  cloud = Cloud(VTK_FLOAT);
+  vtkNew<vtkFloatArray> shortNormals;
+  shortNormals->SetName("Normals");
+  shortNormals->SetNumberOfComponents(3);
+  shortNormals->InsertNextTuple3(0, 0, 1);
+  cloud->GetPointData()->SetNormals(shortNormals);
+  vtkNew<vtkUnsignedCharArray> shortRGB;
+  shortRGB->SetName("RGB");
+  shortRGB->SetNumberOfComponents(3);
+  shortRGB->InsertNextTuple3(1, 2, 3);
+  cloud->GetPointData()->AddArray(shortRGB);
+  CHECK(pcio::WritePLY(cloud, path, error));
+  back = pcio::ReadPLY(path, error);
+  CHECK(back && back->GetNumberOfPoints() == 2 && back->GetPointData()->GetNumberOfArrays() == 0);
+  // Names cut to 200 characters (vtkPLYReader misreads lines of ~4090).
+  cloud = Cloud(VTK_FLOAT);
+  vtkNew<vtkFloatArray> longNamed;
+  longNamed->SetName(std::string(4100, 'n').c_str());
+  longNamed->InsertNextValue(1), longNamed->InsertNextValue(2);
+  cloud->GetPointData()->AddArray(longNamed);
+  CHECK(pcio::WritePLY(cloud, path, error));
+  back = pcio::ReadPLY(path, error);
+  CHECK(back && back->GetPointData()->GetArray(std::string(200, 'n').c_str()));
+  // More properties than ReadPLY accepts: an error, no file ReadPLY would refuse.
+  vtkNew<vtkFloatArray> wide;
+  wide->SetName("wide");
+  wide->SetNumberOfComponents(5000);
+  wide->SetNumberOfTuples(2);
+  wide->Fill(0);
+  cloud->GetPointData()->AddArray(wide);
+  CHECK(
+    !pcio::WritePLY(cloud, path, error) && error.find("more than the 4096") != std::string::npos);
 }
 
 // The scans read exactly as vtkPLYReader read them (sums printed by a

@@ -263,7 +263,26 @@ void TestPCDMalformed()
   Append<std::uint32_t>(file, 357913941u * 12u); // more than LZF can expand 2 bytes to
   file += LZFLiterals("a");
   cloud = pcio::ReadPCD(Write("comp-ratio.pcd", file), error);
-  CHECK(Fails(cloud, error, "bad binary_compressed PCD data (corrupt LZF)"));
+  CHECK(
+    Fails(cloud, error, "bad binary_compressed PCD data (more than LZF can expand 2 bytes to)"));
+  // A point the data cannot hold (40 fields of 2^20 doubles in a short
+  // file): refused before anything is allocated.
+  {
+    std::string names, sizes, types, counts;
+    for (int f = 0; f < 40; ++f)
+    {
+      names += " f" + std::to_string(f), sizes += " 8", types += " F", counts += " 1048576";
+    }
+    for (const char* data : { "binary", "ascii" })
+    {
+      cloud = pcio::ReadPCD(Write(std::string("stride-") + data + ".pcd",
+                              PCDHeaderN("x y z" + names, "4 4 4" + sizes, "F F F" + types,
+                                "1 1 1" + counts, "1", data) +
+                                "1 2 3\n"),
+        error);
+      CHECK(Fails(cloud, error, "cannot hold one point of"));
+    }
+  }
   // A3: absurd COUNT and SIZE.
   cloud = pcio::ReadPCD(
     Write("count-huge.pcd",
@@ -376,6 +395,17 @@ void TestPCDMalformed()
 void TestPCDValues()
 {
   std::string error;
+  // A subnormal double (an underflow of strtod) is a value; an overflow is not.
+  auto tiny =
+    pcio::ReadPCD(Write("f8-subnormal.pcd",
+                    PCDHeaderN("x y z", "8 8 8", "F F F", "1 1 1", "1", "ascii") + "1e-310 2 3\n"),
+      error);
+  CHECK(tiny && tiny->GetPoint(0)[0] == 1e-310);
+  tiny =
+    pcio::ReadPCD(Write("f8-overflow.pcd",
+                    PCDHeaderN("x y z", "8 8 8", "F F F", "1 1 1", "1", "ascii") + "1e400 2 3\n"),
+      error);
+  CHECK(!tiny);
   // A6: a packed colour written by PCL as an unsigned integer, TYPE F or U;
   // a float token gives the bits of the float; TYPE I may be negative.
   auto cloud =
