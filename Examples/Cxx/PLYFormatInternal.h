@@ -160,6 +160,32 @@ inline bool HostIsLittleEndian()
   return first == 1;
 }
 
+/// f(T{}) with T the C++ type of `type`.
+template <typename F>
+auto WithType(Type type, F&& f)
+{
+  switch (type)
+  {
+    case Type::Char:
+      return f(std::int8_t{});
+    case Type::UChar:
+      return f(std::uint8_t{});
+    case Type::Short:
+      return f(std::int16_t{});
+    case Type::UShort:
+      return f(std::uint16_t{});
+    case Type::Int:
+      return f(std::int32_t{});
+    case Type::UInt:
+      return f(std::uint32_t{});
+    case Type::Float:
+      return f(float{});
+    case Type::Double:
+    default:
+      return f(double{});
+  }
+}
+
 /// The value of `type` stored at `bytes` (byte order reversed if `swap`).
 inline double Decode(const char* bytes, Type type, bool swap)
 {
@@ -169,53 +195,22 @@ inline double Decode(const char* bytes, Type type, bool swap)
   {
     b[i] = bytes[swap ? size - 1 - i : i];
   }
-  switch (type)
-  {
-    case Type::Char:
-      return static_cast<signed char>(b[0]);
-    case Type::UChar:
-      return static_cast<unsigned char>(b[0]);
-#define PLY_DECODE(T, C)                                                                           \
-  case Type::T:                                                                                    \
-  {                                                                                                \
-    C value;                                                                                       \
-    std::memcpy(&value, b, sizeof(value));                                                         \
-    return static_cast<double>(value);                                                             \
-  }
-      PLY_DECODE(Short, std::int16_t)
-      PLY_DECODE(UShort, std::uint16_t)
-      PLY_DECODE(Int, std::int32_t)
-      PLY_DECODE(UInt, std::uint32_t)
-      PLY_DECODE(Float, float)
-      PLY_DECODE(Double, double)
-#undef PLY_DECODE
-  }
-  return 0;
+  return WithType(type, [&b](auto tag) {
+    decltype(tag) value;
+    std::memcpy(&value, b, sizeof(value));
+    return static_cast<double>(value);
+  });
 }
 
 /// Stores `value` (representable in `type`) as little-endian bytes.
 inline void EncodeLittle(double value, Type type, char* bytes)
 {
   char b[8];
-  switch (type)
-  {
-#define PLY_ENCODE(T, C)                                                                           \
-  case Type::T:                                                                                    \
-  {                                                                                                \
-    const auto v = static_cast<C>(value);                                                          \
-    std::memcpy(b, &v, sizeof(v));                                                                 \
-    break;                                                                                         \
-  }
-    PLY_ENCODE(Char, std::int8_t)
-    PLY_ENCODE(UChar, std::uint8_t)
-    PLY_ENCODE(Short, std::int16_t)
-    PLY_ENCODE(UShort, std::uint16_t)
-    PLY_ENCODE(Int, std::int32_t)
-    PLY_ENCODE(UInt, std::uint32_t)
-    PLY_ENCODE(Float, float)
-    PLY_ENCODE(Double, double)
-#undef PLY_ENCODE
-  }
+  WithType(type, [&b, value](auto tag) {
+    const auto v = static_cast<decltype(tag)>(value);
+    std::memcpy(b, &v, sizeof(v));
+    return 0;
+  });
   const std::size_t size = Size(type);
   const bool swap = !HostIsLittleEndian();
   for (std::size_t i = 0; i < size; ++i)

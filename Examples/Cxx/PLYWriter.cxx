@@ -38,7 +38,9 @@ bool PlyType(vtkDataArray* array, Type& type)
 {
   switch (array->GetDataType())
   {
-    case VTK_CHAR:
+    case VTK_CHAR: // (signed or not, as the platform's char)
+      type = std::numeric_limits<char>::is_signed ? Type::Char : Type::UChar;
+      return true;
     case VTK_SIGNED_CHAR:
       type = Type::Char;
       return true;
