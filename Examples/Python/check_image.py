@@ -7,7 +7,8 @@ common colour) and the image holds at least 16 distinct colours. With
 --baseline: same size, and the mean absolute difference over all pixels and
 channels (0-255 scale) is at most --tolerance. Exit status 0 when all hold;
 prints the figures either way. Used by the CTest tests gui.ParaViewSmoke and
-python.ExamplePaperFigures.
+gui.PaperFigures. Grey images (with or without alpha) are compared as RGB;
+alpha is ignored.
 """
 import argparse
 import sys
@@ -26,7 +27,10 @@ def read_png(path):
     image = reader.GetOutput()
     width, height, _ = image.GetDimensions()
     scalars = vtk_to_numpy(image.GetPointData().GetScalars())
-    return scalars.reshape(height, width, -1)[:, :, :3].astype(np.int16)
+    pixels = scalars.reshape(height, width, -1).astype(np.int16)
+    if pixels.shape[2] <= 2:  # grey (+ alpha): the grey value in all three channels
+        return np.repeat(pixels[:, :, :1], 3, axis=2)
+    return pixels[:, :, :3]
 
 
 def not_blank(pixels):

@@ -3,11 +3,14 @@ parallel (each process makes its share, seeded by process id), simplified to
 1 % with 1, 2, ... processes. Not a test; figures for the README.
 
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \\
-    mpiexec --oversubscribe -n 2 pvbatch --mpi Examples/Python/mpi_scaling.py \\
+    mpiexec --oversubscribe -n 2 pvbatch --mpi --symmetric Examples/Python/mpi_scaling.py \\
       --points 50000000 [--fraction 0.01] [--always-distribute] [--mode paper] [--no-fill-holes] \\
       [--no-covering] [--final-lloyd-iterations N]
 
-PYTHONPATH must hold the build tree's asmvtk package (build/lib/python3/dist-packages).
+--symmetric is needed: every process runs this script and makes its share of
+the cloud (without it, only process 0 would, and the run would hang in the
+filter's collectives). PYTHONPATH must hold the build tree's asmvtk package
+(build/lib/python3/dist-packages).
 Prints, on process 0: processes, points, output points, wall time of the
 filter (max over processes), each process's CPU time in the filter (what
 a loaded machine cannot inflate) and peak resident memory (of the whole
@@ -16,7 +19,9 @@ The cloud: points on a wavy sphere-like surface (r = 1 + 0.1 sin(5u) sin(4v))
 with 0.2 % noise, so the cells hold curved patches, as scans do.
 """
 import argparse
+import os
 import resource
+import sys
 import time
 
 import numpy as np
@@ -27,15 +32,18 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 from asmvtk import vtkASMSimplify
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from asm_plugin import fraction_arg, positive_int_arg  # noqa: E402
+
 parser = argparse.ArgumentParser()
-parser.add_argument("--points", type=int, default=50_000_000)
-parser.add_argument("--fraction", type=float, default=0.01)
+parser.add_argument("--points", type=positive_int_arg, default=50_000_000)
+parser.add_argument("--fraction", type=fraction_arg, default=0.01)
 parser.add_argument("--always-distribute", action="store_true")
 parser.add_argument("--no-curvature", action="store_true")
 parser.add_argument("--mode", choices=("feature", "paper"), default="feature")
 # FillHoles off (the faster setting; distributed runs gather its rankings)
 parser.add_argument("--no-fill-holes", action="store_true")
-parser.add_argument("--final-lloyd-iterations", type=int)  # (default: the filter's)
+parser.add_argument("--final-lloyd-iterations", type=int, choices=range(0, 9), metavar="0..8")  # (default: the filter's)
 parser.add_argument("--no-covering", action="store_true")  # CoveringRounds 0, as distributed runs do
 args = parser.parse_args()
 

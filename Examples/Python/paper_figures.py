@@ -9,15 +9,19 @@ points; default scan Testing/Data/bunny.ply). Top row: the simplified cloud in
 grey with its key points (KeyPoint == 1) drawn larger in red, as the paper's
 arrows point out preserved key points. Bottom row: the same cloud coloured by
 |MeanCurvature| from green (low) to blue (high), as in the paper, on one
-colour range for all columns (5th to 95th percentile of the densest result).
+colour range for all columns (5th to 95th percentile of the densest result,
+whatever the order of --fractions). A missing or empty scan, a fraction
+outside (0, 1], an unwritable output or a failed screenshot stop it with a
+message and exit status 1.
 
 Needs an OpenGL context: on a machine without a display run it under Xvfb,
 e.g. Testing/Gui/run-xvfb.sh pvbatch Examples/Python/paper_figures.py.
-The CTest test python.ExamplePaperFigures renders it with Mesa's software
+The CTest test gui.PaperFigures renders it with Mesa's software
 OpenGL and compares it with Testing/Data/Baseline/paper_figures.png.
 """
 import argparse
 import os
+import sys
 
 import numpy as np
 from paraview import servermanager
@@ -25,7 +29,7 @@ from paraview.simple import (AssignViewToLayout, Calculator, CreateLayout, Creat
                              LoadPlugin, PLYReader, Render, SaveScreenshot, Show, Text, Threshold)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from asm_plugin import REPO, find_plugin
+from asm_plugin import REPO, find_plugin, fraction_arg, int_at_least, require_file, require_writable
 
 GREY = [0.55, 0.55, 0.55]
 RED = [0.85, 0.1, 0.1]
@@ -54,17 +58,22 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scan", nargs="?", default=os.path.join(REPO, "Testing", "Data", "bunny.ply"))
     parser.add_argument("-o", "--output", default="paper_figures.png")
-    parser.add_argument("--fractions", type=float, nargs="+", default=[0.01, 0.05, 0.2])
-    parser.add_argument("--size", type=int, nargs=2, default=[1200, 800], help="image width and height")
+    parser.add_argument("--fractions", type=fraction_arg, nargs="+", default=[0.01, 0.05, 0.2])
+    parser.add_argument("--size", type=int_at_least(16), nargs=2, default=[1200, 800],
+                        help="image width and height")
     parser.add_argument("--mode", choices=["Paper", "Feature Preserving"], default="Paper",
                         help="vtkASMSimplify Mode (default: the paper's literal pipeline)")
     parser.add_argument("--plugin", help="path of the ASM plugin library (ASM.so)")
     args = parser.parse_args()
+    require_file(args.scan, "scan")
+    require_writable(args.output)
 
     LoadPlugin(find_plugin(args.plugin), ns=globals())
     reader = PLYReader(FileNames=[os.path.abspath(args.scan)])
     reader.UpdatePipeline()
     n_in = reader.GetDataInformation().GetNumberOfPoints()
+    if n_in == 0:
+        sys.exit("scan %s: no points read (not a PLY file with vertices?)" % args.scan)
     name = os.path.splitext(os.path.basename(args.scan))[0]
 
     columns = len(args.fractions)
@@ -86,6 +95,8 @@ def main():
     for fraction in args.fractions:
         asm = ASMSimplify(Input=reader, OutputFraction=fraction, Mode=args.mode)  # noqa: F821 (from the plugin)
         asm.UpdatePipeline()
+        if asm.GetDataInformation().GetNumberOfPoints() == 0:
+            sys.exit("ASM Simplify gave no points at %g %% of %d (see its messages above)" % (100 * fraction, n_in))
         magnitude = Calculator(Input=asm, ResultArrayName="AbsMeanCurvature", Function="abs(MeanCurvature)")
         keys = Threshold(Input=asm, Scalars=["POINTS", "KeyPoint"])
         if hasattr(keys, "LowerThreshold"):
@@ -97,7 +108,7 @@ def main():
         results.append((fraction, asm, magnitude, keys))
 
     # One colour range for all columns, from the densest result.
-    densest = servermanager.Fetch(results[-1][1])
+    densest = servermanager.Fetch(max(results, key=lambda result: result[0])[1])
     curvature = np.abs(vtk_to_numpy(densest.GetPointData().GetArray("MeanCurvature")))
     low, high = np.percentile(curvature, [5, 95])
     lut = GetColorTransferFunction("AbsMeanCurvature")
@@ -149,7 +160,9 @@ def main():
             Render(view)
         print("N = %d  N_s = %d (%g %%)  key points = %d" % (n_in, n_s, 100 * fraction, n_keys))
 
-    SaveScreenshot(os.path.abspath(args.output), layout, ImageResolution=args.size)
+    if not SaveScreenshot(os.path.abspath(args.output), layout, ImageResolution=args.size) \
+            or not os.path.isfile(args.output):
+        sys.exit("could not write " + args.output)
     print("wrote", args.output)
 
 

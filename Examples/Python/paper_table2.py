@@ -107,6 +107,10 @@ def main():
     scans = list(args.scans)
     if not scans or args.with_test_data:
         scans += sorted(glob.glob(os.path.join(TEST_DATA, "*.ply")))
+    # Each file once, in the order given (a scan named and also in Testing/Data is one row).
+    seen = set()
+    scans = [path for path in scans
+             if os.path.realpath(path) not in seen and not seen.add(os.path.realpath(path))]
     if not scans:
         sys.exit("no PLY files given and none in " + TEST_DATA)
 

@@ -10,8 +10,13 @@ run time, the number of key points and the maximum key point error MKPE
 (output field data; 0 in the default mode, whose key points are the extreme
 input points themselves).
 
-The plugin is looked up in this order: --plugin, $ASM_PLUGIN, then the build
-tree (build/lib/paraview-*/plugins/ASM/ASM.so next to this repository).
+Exits with a message and status 1, writing nothing, when the input is missing
+or holds no points, the fraction is not in (0, 1], or the output name does not
+end in .ply or its directory is not writable.
+
+The plugin is looked up in this order: --plugin, $ASM_PLUGIN, $PV_PLUGIN_PATH,
+then the build tree (build/lib/paraview-*/plugins/ASM/ASM.so next to this
+repository).
 """
 import argparse
 import os
@@ -24,7 +29,7 @@ from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYWriter
 
-from asm_plugin import REPO, find_plugin
+from asm_plugin import REPO, find_plugin, fraction_arg, require_file, require_writable
 
 
 def write_ply(polydata, path):
@@ -50,19 +55,26 @@ def main():
     parser.add_argument("input", nargs="?", default=os.path.join(REPO, "Testing", "Data", "bunny.ply"),
                         help="input PLY file (default: Testing/Data/bunny.ply)")
     parser.add_argument("output", nargs="?", default="asm-output.ply",
-                        help="output PLY file (default: asm-output.ply)")
-    parser.add_argument("--fraction", type=float, default=0.05,
-                        help="fraction of the input points to keep (default: 0.05)")
+                        help="output PLY file, ending in .ply (default: asm-output.ply)")
+    parser.add_argument("--fraction", type=fraction_arg, default=0.05,
+                        help="fraction of the input points to keep, in (0, 1] (default: 0.05)")
     parser.add_argument("--mode", choices=["Feature Preserving", "Paper"], default="Feature Preserving",
                         help="vtkASMSimplify Mode (default: Feature Preserving)")
     parser.add_argument("--plugin", help="path of the ASM plugin library (ASM.so)")
     args = parser.parse_args()
+    if not args.output.lower().endswith(".ply"):
+        # (vtkPLYWriter would append ".ply" and write another file than the one named)
+        parser.error("the output file name must end in .ply: %s" % args.output)
+    require_file(args.input)
+    require_writable(args.output)
 
     LoadPlugin(find_plugin(args.plugin), ns=globals())
 
     reader = PLYReader(FileNames=[os.path.abspath(args.input)])
     reader.UpdatePipeline()
     n_in = reader.GetDataInformation().GetNumberOfPoints()
+    if n_in == 0:
+        sys.exit("input %s: no points read (not a PLY file with vertices?)" % args.input)
 
     asm = ASMSimplify(Input=reader, OutputFraction=args.fraction, Mode=args.mode)  # noqa: F821 (from the plugin)
     start = time.perf_counter()
@@ -70,6 +82,8 @@ def main():
     seconds = time.perf_counter() - start
 
     output = servermanager.Fetch(asm)
+    if output is None or output.GetNumberOfPoints() == 0:
+        sys.exit("ASM Simplify produced no points from %d input points (see its messages above)" % n_in)
     mkpe_array = output.GetFieldData().GetArray("MKPE")
     mkpe = mkpe_array.GetValue(0) if mkpe_array is not None else float("nan")
     keys_array = output.GetFieldData().GetArray("NumberOfKeyPoints")
