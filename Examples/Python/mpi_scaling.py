@@ -1,6 +1,6 @@
 """Scaling of vtkASMSimplify in MPI runs: a large synthetic cloud generated in
 parallel (each process makes its share, seeded by process id), simplified to
-1 % with 1, 2, ... processes. Not a test; figures for the README.
+1 % with 1, 2, ... processes. Not a test; figures for docs/parallel.md ("Scaling").
 
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \\
     mpiexec --oversubscribe -n 2 pvbatch --mpi --symmetric Examples/Python/mpi_scaling.py \\
