@@ -138,10 +138,15 @@ int vtkKeyPointError::RequestData(
   {
     if (auto* composite = vtkCompositeDataSet::GetData(inputVector[port]))
     {
-      std::vector<std::string> dropped;
-      merged[port] = asmvtk::MergeLeaves(
-        composite, port == 0 ? asmvtk::LeafData::PointsOnly : asmvtk::LeafData::Arrays, dropped);
+      std::vector<std::string> dropped, skipped;
+      merged[port] = asmvtk::MergeLeaves(composite,
+        port == 0 ? asmvtk::LeafData::PointsOnly : asmvtk::LeafData::Arrays, dropped, &skipped);
       (port == 0 ? original : simplified) = merged[port];
+      for (const std::string& leaf : skipped)
+      {
+        vtkWarningMacro(<< asmvtk::SkippedLeafWarning(
+                          leaf, port == 0 ? " (original, port 0)" : " (simplified, port 1)"));
+      }
       for (const std::string& name : dropped) // (port 1's: passed to the output)
       {
         vtkWarningMacro(<< asmvtk::DroppedArrayWarning(name, " of the simplified (port 1) cloud"));
@@ -359,7 +364,22 @@ int vtkKeyPointError::RequestData(
   // table gathered from the processes (spreadsheet view, SaveData) has one
   // row; the other processes' tables have the same columns and no row.
   const vtkIdType rows = !distributed || comm.Rank() == 0 ? 1 : 0;
-  const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : 1.0;
+  // Eq. 1 and 2 over no key point (a flat original, or one too sparse for
+  // its cells) are undefined, not a perfect 0; so are the relative figures
+  // of an original at one position (a diagonal of 0).
+  const double undefined = std::numeric_limits<double>::quiet_NaN();
+  const bool noKeys = result.OriginalKeyPoints == 0;
+  const double akpe = noKeys ? undefined : result.AKPE;
+  const double mkpe = noKeys ? undefined : result.MKPE;
+  if (noKeys)
+  {
+    if (rows > 0)
+    {
+      vtkWarningMacro("The original cloud has no key point (flat, or too sparse for the grid's "
+                      "cells): AKPE and MKPE are undefined (NaN).");
+    }
+  }
+  const double diagonal = result.Diagonal > 0.0 ? result.Diagonal : undefined;
   const double keyScale =
     this->DistanceMeasure == SQUARED_DISTANCE ? diagonal * diagonal : diagonal;
   const std::vector<std::pair<const char*, double>> figures = {
@@ -372,10 +392,10 @@ int vtkKeyPointError::RequestData(
     { "CellSize", result.CellSize },
     { "NumberOfOriginalKeyPoints", static_cast<double>(result.OriginalKeyPoints) },
     { "NumberOfSimplifiedKeyPoints", static_cast<double>(result.SimplifiedKeyPoints) },
-    { "AKPE", result.AKPE },
-    { "MKPE", result.MKPE },
-    { "AKPERelative", result.AKPE / keyScale },
-    { "MKPERelative", result.MKPE / keyScale },
+    { "AKPE", akpe },
+    { "MKPE", mkpe },
+    { "AKPERelative", akpe / keyScale },
+    { "MKPERelative", mkpe / keyScale },
     { "HausdorffDistance", result.Hausdorff },
     { "HausdorffDistanceRelative", result.Hausdorff / diagonal },
     { "MeanDistanceOriginalToSimplified", result.OriginalToSimplified.Mean },

@@ -21,14 +21,19 @@
  * point when the simplified cloud has no key point). AKPE is the mean
  * (Eq. 1) and MKPE the maximum (Eq. 2) of the pair distances: Euclidean by
  * default, squared (the paper's Eq. 3 as printed) with DistanceMeasure =
- * SQUARED_DISTANCE.
+ * SQUARED_DISTANCE. An original without key points (flat, or too sparse
+ * for the grid's cells) has no key point error: AKPE and MKPE are NaN, with
+ * a warning.
  *
  * The measures the field uses, so ASM can be compared with a voxel grid or
  * random sampling on equal terms: the symmetric Hausdorff distance between
  * the point sets; mean, RMS and maximum nearest-neighbour distance in each
  * direction; and the point-to-plane distance of every original point to the
  * simplified surface (a plane fitted to its PlaneNeighbors nearest simplified
- * points): mean, RMS, maximum.
+ * points): mean, RMS, maximum. Neighbours that span no plane (exact
+ * duplicates at one or two positions, or points on a line to 1e-6 of their
+ * extent) give the distance to the nearest of them instead, as fewer than 3
+ * neighbours do; so does "Error" below.
  *
  * Output port 0: the simplified cloud (one vertex per point) with every
  * input point array, "Error" (each simplified point's distance to the
@@ -52,7 +57,8 @@
  * gathered over the processes (spreadsheet view, SaveData, Fetch) has one
  * row. The field data figures of port 0 stay on every process. Figure
  * names end in "Relative" when divided by the original's bounding-box
- * diagonal (by its square for squared AKPE/MKPE).
+ * diagonal (by its square for squared AKPE/MKPE); NaN when that diagonal
+ * is 0 (an original at one position).
  *
  * Points with NaN or infinite coordinates are skipped with a warning;
  * points flagged in vtkGhostType as another piece's (DUPLICATEPOINT) or

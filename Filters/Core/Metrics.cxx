@@ -69,11 +69,13 @@ std::vector<Eigen::Vector3d> CloudKeyPoints(const double* xyz, IdView ids, const
 
 namespace
 {
-// A fitted plane: a point of it and its unit normal.
+// A fitted plane: a point of it and its unit normal; Defined false when the
+// points span no plane (see FitPlane).
 struct Plane
 {
   double Centroid[3];
   double Normal[3];
+  bool Defined;
 };
 
 // The plane fitted (PCA) to `count` points side by side: through their
@@ -82,6 +84,16 @@ struct Plane
 // the iterative one that ComputeCellFrame uses; the distances agree with
 // the latter's to about 1e-12 of the cloud's extent). A covariance that
 // overflows: ComputeCellFrame's identity frame (normal z).
+//
+// Points that span no plane leave the normal arbitrary (the solver's pick
+// among equal eigenvalues: a distance along x for points at one position,
+// which changed with a rotation of the data): they are not Defined when
+// their spread across the largest axis (the square root of the middle
+// eigenvalue, a Rayleigh quotient of the computed eigenvector, exact to a
+// rounding of the largest one) is within 1e-6 of their spread along it (a
+// line: collinear points, or two positions), or when that largest spread
+// is within 64 roundings of the coordinates (one position: exact
+// duplicates).
 Plane FitPlane(const double* xyz, std::size_t count)
 {
   const double n = static_cast<double>(count);
@@ -117,11 +129,18 @@ Plane FitPlane(const double* xyz, std::size_t count)
   cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   cov /= n;
   Eigen::Vector3d normal(0.0, 0.0, 1.0);
+  plane.Defined = true;
   if (cov.allFinite())
   {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
     solver.computeDirect(cov);
-    normal = solver.eigenvectors().col(0).normalized();
+    const Eigen::Matrix3d& v = solver.eigenvectors();
+    normal = v.col(0).normalized();
+    const double largest = std::max(0.0, v.col(2).dot(cov * v.col(2)));
+    const double middle = std::max(0.0, v.col(1).dot(cov * v.col(1)));
+    const double magnitude = std::max({ std::abs(c[0]), std::abs(c[1]), std::abs(c[2]) });
+    const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * magnitude;
+    plane.Defined = std::sqrt(largest) > rounding && middle > 1e-12 * largest;
   }
   CopyPoint(normal.data(), plane.Normal);
   return plane;
@@ -137,7 +156,8 @@ Plane FitPlane(const double* xyz, std::size_t count)
 class PlaneFits
 {
 public:
-  /// The distance from the answer's query to its neighbours' plane.
+  /// The distance from the answer's query to its neighbours' plane; to the
+  /// nearest of them when they span no plane (see FitPlane).
   double Distance(const KNearestAnswer& a)
   {
     const std::size_t n = a.Ids.size();
@@ -189,7 +209,7 @@ public:
       const Plane fit = FitPlane(this->Xyz.data(), n);
       if (!keep)
       {
-        return DistanceTo(fit, a.Point);
+        return DistanceTo(fit, a);
       }
       e.Count = n;
       for (std::size_t i = 0; i < n; ++i)
@@ -198,7 +218,7 @@ public:
       }
       e.Fit = fit;
     }
-    return DistanceTo(e.Fit, a.Point);
+    return DistanceTo(e.Fit, a);
   }
 
 private:
@@ -215,8 +235,13 @@ private:
   {
     return PositionThenIdBefore(a.Xyz + 3 * i, a.Ids[i], a.Xyz + 3 * j, a.Ids[j]);
   }
-  static double DistanceTo(const Plane& plane, const double* p)
+  static double DistanceTo(const Plane& plane, const KNearestAnswer& a)
   {
+    if (!plane.Defined)
+    {
+      return std::sqrt(a.SqDist[0]);
+    }
+    const double* p = a.Point;
     return std::abs(plane.Normal[0] * (p[0] - plane.Centroid[0]) +
       plane.Normal[1] * (p[1] - plane.Centroid[1]) + plane.Normal[2] * (p[2] - plane.Centroid[2]));
   }
