@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkASMCompositeInput.h"
 
+#include "vtkASMPointDataAggregation.h"
+
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArrayRange.h"
@@ -14,6 +16,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <set>
@@ -22,8 +25,20 @@ namespace asmvtk
 {
 const char* const LeafPointIdsName = "vtkASMLeafPointIds";
 
-vtkSmartPointer<vtkPolyData> MergeLeaves(
-  vtkCompositeDataSet* input, LeafData what, std::vector<std::string>& dropped)
+namespace
+{
+// A leaf's ghost flags when they are a valid vtkGhostType array (unsigned
+// char, a value for each point), the array that DropGhostPoints reads.
+vtkUnsignedCharArray* LeafGhosts(vtkPointSet* leaf)
+{
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
+    leaf->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  return ghosts && ghosts->GetNumberOfTuples() >= leaf->GetNumberOfPoints() ? ghosts : nullptr;
+}
+} // namespace
+
+vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData what,
+  std::vector<std::string>& dropped, std::vector<std::string>* skipped)
 {
   struct Leaf
   {
@@ -37,12 +52,22 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   it.TakeReference(input->NewIterator());
   for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
   {
-    auto* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+    vtkDataObject* object = it->GetCurrentDataObject();
+    auto* leaf = vtkPointSet::SafeDownCast(object);
     if (leaf && leaf->GetPoints() && leaf->GetNumberOfPoints() > 0)
     {
       leaves.push_back({ leaf, it->GetCurrentFlatIndex() });
       total += leaf->GetNumberOfPoints();
       floats = floats && leaf->GetPoints()->GetDataType() == VTK_FLOAT;
+    }
+    else if (!leaf && skipped && object)
+    {
+      auto* data = vtkDataSet::SafeDownCast(object);
+      if (!data || data->GetNumberOfPoints() > 0)
+      {
+        skipped->push_back("block " + std::to_string(it->GetCurrentFlatIndex()) + " (" +
+          object->GetClassName() + ")");
+      }
     }
   }
   auto merged = vtkSmartPointer<vtkPolyData>::New();
@@ -58,6 +83,17 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   vtkDataSetAttributes::FieldList fields(static_cast<int>(leaves.size()));
   std::vector<vtkSmartPointer<vtkPointData>> leafData; // each leaf's arrays that can be merged
   std::set<std::string> names;
+  // The ghost flags travel apart from the other arrays: a leaf without them
+  // (ghosts are often given only where there are some) has none flagged,
+  // where the intersection below would drop every leaf's flags.
+  bool anyGhosts = false;
+  for (const Leaf& leaf : leaves)
+  {
+    anyGhosts = anyGhosts || LeafGhosts(leaf.Points);
+  }
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  ghosts->SetNumberOfTuples(anyGhosts ? total : 0);
   vtkIdType at = 0;
   for (std::size_t k = 0; k < leaves.size(); ++k)
   {
@@ -87,11 +123,20 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
     {
       copyTo(static_cast<vtkDoubleArray*>(points->GetData())->GetPointer(3 * at));
     }
+    if (anyGhosts)
+    {
+      vtkUnsignedCharArray* flags = LeafGhosts(leaf);
+      for (vtkIdType i = 0; i < leaf->GetNumberOfPoints(); ++i)
+      {
+        ghosts->SetValue(at + i, flags ? flags->GetValue(i) : 0);
+      }
+    }
     at += leaf->GetNumberOfPoints();
     // The leaf's arrays with a tuple for each of its points (a shorter one
     // is left out, as an array that some leaf lacks is).
     vtkPointData* pd = leafData.emplace_back(vtkSmartPointer<vtkPointData>::New());
     pd->ShallowCopy(leaf->GetPointData());
+    pd->RemoveArray(vtkDataSetAttributes::GhostArrayName());
     for (int a = pd->GetNumberOfArrays() - 1; a >= 0; --a)
     {
       if (const char* name = pd->GetArrayName(a))
@@ -115,10 +160,15 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
   merged->SetPoints(points);
   if (what == LeafData::PointsOnly)
   {
+    if (anyGhosts)
+    {
+      merged->GetPointData()->AddArray(ghosts);
+    }
     return merged;
   }
 
   vtkPointData* out = merged->GetPointData();
+  out->CopyGlobalIdsOn(); // (off by default: the leaves' global ids would be dropped)
   out->CopyAllocate(fields, total);
   at = 0;
   for (std::size_t k = 0; k < leaves.size(); ++k)
@@ -126,6 +176,14 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
     const vtkIdType n = leaves[k].Points->GetNumberOfPoints();
     out->CopyData(fields, leafData[k], static_cast<int>(k), at, n, 0);
     at += n;
+  }
+  if (anyGhosts)
+  {
+    out->AddArray(ghosts);
+  }
+  for (std::size_t k = leaves.size(); k-- > 0;) // (the first leaf's keys last: they stay)
+  {
+    CopyArrayInformation(leaves[k].Points->GetPointData(), out);
   }
   for (const std::string& name : names)
   {
@@ -155,6 +213,12 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(
     out->AddArray(id);
   }
   return merged;
+}
+
+std::string SkippedLeafWarning(const std::string& leaf, const char* whose)
+{
+  return "The composite input's " + leaf + whose +
+    " is not a point set (vtkPointSet): its points are left out.";
 }
 
 std::string DroppedArrayWarning(const std::string& name, const char* whose)

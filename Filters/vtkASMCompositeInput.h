@@ -12,7 +12,9 @@
  * when every leaf's are floats, else as doubles; the point arrays that every leaf with points has,
  * with the same name, type and number of components and a tuple for each of the leaf's points
  * (vtkDataSetAttributes::FieldList; the others
- * are dropped, and named), unless only the points are asked for. With the origins, two vtkIdType
+ * are dropped, and named; global ids are kept as other arrays are), unless only the points are
+ * asked for. The ghost flags (vtkGhostType) are merged in any case, 0 for a leaf without them, so
+ * that flagged points are skipped as in a vtkPointSet input. With the origins, two vtkIdType
  * arrays say where each point came from:
  * "vtkOriginalBlockIds", the leaf's flat index in the composite
  * (vtkCompositeDataIterator::GetCurrentFlatIndex), and LeafPointIdsName, the
@@ -47,12 +49,18 @@ enum class LeafData
 
 /// The leaves of `input` as one cloud (see above). `dropped`: the names of
 /// the arrays left out because some leaf lacks them or has them otherwise.
-vtkSmartPointer<vtkPolyData> MergeLeaves(
-  vtkCompositeDataSet* input, LeafData what, std::vector<std::string>& dropped);
+/// `skipped` (when given): the leaves with points that are not point sets
+/// (an image, a rectilinear grid: their points are not simplified), as
+/// "block <flat index> (<class>)".
+vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData what,
+  std::vector<std::string>& dropped, std::vector<std::string>* skipped = nullptr);
 
 /// The warning for a dropped array `name`; `whose` (e.g. " of the simplified
 /// (port 1) cloud", or empty) names the input when a filter has two.
 std::string DroppedArrayWarning(const std::string& name, const char* whose = "");
+
+/// The warning for a leaf that MergeLeaves left out (`skipped`).
+std::string SkippedLeafWarning(const std::string& leaf, const char* whose = "");
 } // namespace asmvtk
 
 #endif

@@ -465,4 +465,19 @@ void ChooseAmongDuplicates(vtkPointData* inPD, Index numberOfPoints, SimplifyRes
     std::sort(ties->begin(), ties->end());
   }
 }
+//------------------------------------------------------------------------------
+void CopyArrayInformation(vtkPointData* from, vtkPointData* to)
+{
+  for (int i = 0; i < from->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* in = from->GetAbstractArray(i);
+    vtkAbstractArray* out =
+      in && in->GetName() && in->HasInformation() ? to->GetAbstractArray(in->GetName()) : nullptr;
+    if (out && out != in)
+    {
+      out->CopyInformation(in->GetInformation());
+    }
+  }
+}
+
 } // namespace asmvtk

@@ -75,6 +75,12 @@ void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Index numberOfPoints,
   asmcore::SimplifyResult& result, bool snap, bool threads,
   std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
 
+/// The information keys (units, GUI hints, ...) of each array of `from`
+/// that has some, given to the array of the same name in `to`, as VTK's
+/// point-subsetting filters keep them (the range keys excepted:
+/// vtkDataArray::CopyInformation drops them).
+void CopyArrayInformation(vtkPointData* from, vtkPointData* to);
+
 /// -1, 0 or 1: the tuple of point a against that of point b in `array`,
 /// component by component, by value (NaN after every number and equal to
 /// NaN; strings by their bytes; other arrays, such as variant arrays, tie).

@@ -93,8 +93,12 @@ int vtkASMSimplify::RequestData(
   vtkSmartPointer<vtkPolyData> merged; // a composite input's leaves as one cloud
   if (auto* composite = vtkCompositeDataSet::GetData(inputVector[0]))
   {
-    std::vector<std::string> dropped;
-    merged = asmvtk::MergeLeaves(composite, asmvtk::LeafData::ArraysAndOrigins, dropped);
+    std::vector<std::string> dropped, skipped;
+    merged = asmvtk::MergeLeaves(composite, asmvtk::LeafData::ArraysAndOrigins, dropped, &skipped);
+    for (const std::string& leaf : skipped)
+    {
+      vtkWarningMacro(<< asmvtk::SkippedLeafWarning(leaf));
+    }
     for (const std::string& name : dropped)
     {
       vtkWarningMacro(<< asmvtk::DroppedArrayWarning(name));
@@ -182,7 +186,7 @@ int vtkASMSimplify::RequestData(
   {
     vtkWarningMacro(<< "The requested number of output points (" << target
                     << ") is not smaller than the number of input points (" << valid
-                    << "): the input points are passed through.");
+                    << "): every input point is kept, one sample each.");
     target = valid;
   }
 
@@ -337,6 +341,9 @@ int vtkASMSimplify::RequestData(
   {
     asmvtk::AddFetchedArrays(fetchedPD, share.Cloud, outPD);
   }
+  // (A distributed run's arrays were rebuilt from their types: the keys
+  // come from this process's input, as a serial run's do.)
+  asmvtk::CopyArrayInformation(input->GetPointData(), outPD);
   asmcore::PointArray<asmcore::Index>().swap(
     result.Members); // used up: room for the curvature's tree
   outPD->AddArray(generated.KeyPoint);

@@ -96,7 +96,9 @@
  * move input-point samples to cover their clusters (CoveringRounds). In this
  * mode a cluster is the set of input points nearest a sample, the count is
  * still exactly N_s, and AKPE/MKPE are 0 when the key points sit on their
- * extreme points. The options other than Mode are ignored in PAPER mode.
+ * extreme points. These feature-preserving options are ignored in PAPER mode
+ * (the paper's own parameters, Alpha, SamplesPerCell, WeightMode,
+ * RandomSeed, ..., apply to it).
  *
  * The output is deterministic: the same input, parameters and RandomSeed give
  * the same points in the same order whatever the number of threads.
@@ -177,7 +179,10 @@ public:
    * FEATURE_PRESERVING (default) or PAPER. PAPER runs the paper's pipeline
    * exactly as read in docs/ASM-spec.md (steps 1-5 above); FEATURE_PRESERVING
    * adds the fixes below, each of which can be switched off on its own. The
-   * options below the Mode are ignored in PAPER mode. FEATURE_PRESERVING
+   * feature-preserving options below the Mode, ValidateKeyPoints to
+   * BoundSnappedHoles, are ignored in PAPER mode; the parameters from
+   * TargetMode on apply to it (SamplesPerCell and RandomSeed to it alone, as
+   * they say). FEATURE_PRESERVING
    * keeps at most 2^31 - 1 output points and non-empty grid cells (an error
    * above that).
    */
@@ -473,7 +478,10 @@ public:
   ///@{
   /**
    * Exact number of output points N_s (>= 0); default 1000. Used when
-   * TargetMode is NUMBER_OF_OUTPUT_POINTS. N_s >= N passes the input through.
+   * TargetMode is NUMBER_OF_OUTPUT_POINTS. N_s >= N keeps every input point, one
+   * sample each (N_s = N, with a warning): the output is the input's points in
+   * the grid's cell order, not the input itself; among exact duplicates the
+   * non-averaged arrays take the tuple chosen by value, as at any N_s.
    */
   vtkSetClampMacro(NumberOfOutputPoints, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(NumberOfOutputPoints, vtkIdType);
