@@ -90,10 +90,10 @@ struct Plane
 // which changed with a rotation of the data): they are not Defined when
 // their spread across the largest axis (the square root of the middle
 // eigenvalue, a Rayleigh quotient of the computed eigenvector, exact to a
-// rounding of the largest one) is within 1e-6 of their spread along it (a
-// line: collinear points, or two positions), or when that largest spread
-// is within 64 roundings of the coordinates (one position: exact
-// duplicates).
+// rounding of the largest one) is within 1e-6 of their spread along it: a
+// line (collinear points, or two positions), or one position (exact
+// duplicates: a covariance of rank 1 at most, from the centroid's
+// rounding, or 0).
 Plane FitPlane(const double* xyz, std::size_t count)
 {
   const double n = static_cast<double>(count);
@@ -138,9 +138,7 @@ Plane FitPlane(const double* xyz, std::size_t count)
     normal = v.col(0).normalized();
     const double largest = std::max(0.0, v.col(2).dot(cov * v.col(2)));
     const double middle = std::max(0.0, v.col(1).dot(cov * v.col(1)));
-    const double magnitude = std::max({ std::abs(c[0]), std::abs(c[1]), std::abs(c[2]) });
-    const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * magnitude;
-    plane.Defined = std::sqrt(largest) > rounding && middle > 1e-12 * largest;
+    plane.Defined = middle > 1e-12 * largest;
   }
   CopyPoint(normal.data(), plane.Normal);
   return plane;
