@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkASMCompositeInput.h"
 
+#include "vtkASMFilterUtilities.h"
 #include "vtkASMPointDataAggregation.h"
 
 #include "vtkCompositeDataIterator.h"
@@ -24,18 +25,6 @@
 namespace asmvtk
 {
 const char* const LeafPointIdsName = "vtkASMLeafPointIds";
-
-namespace
-{
-// A leaf's ghost flags when they are a valid vtkGhostType array (unsigned
-// char, a value for each point), the array that DropGhostPoints reads.
-vtkUnsignedCharArray* LeafGhosts(vtkPointSet* leaf)
-{
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
-    leaf->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  return ghosts && ghosts->GetNumberOfTuples() >= leaf->GetNumberOfPoints() ? ghosts : nullptr;
-}
-} // namespace
 
 vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData what,
   std::vector<std::string>& dropped, std::vector<std::string>* skipped)
@@ -89,7 +78,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData wh
   bool anyGhosts = false;
   for (const Leaf& leaf : leaves)
   {
-    anyGhosts = anyGhosts || LeafGhosts(leaf.Points);
+    anyGhosts = anyGhosts || GhostFlags(leaf.Points);
   }
   vtkNew<vtkUnsignedCharArray> ghosts;
   ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
@@ -125,7 +114,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData wh
     }
     if (anyGhosts)
     {
-      vtkUnsignedCharArray* flags = LeafGhosts(leaf);
+      vtkUnsignedCharArray* flags = GhostFlags(leaf);
       for (vtkIdType i = 0; i < leaf->GetNumberOfPoints(); ++i)
       {
         ghosts->SetValue(at + i, flags ? flags->GetValue(i) : 0);
@@ -136,7 +125,10 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData wh
     // is left out, as an array that some leaf lacks is).
     vtkPointData* pd = leafData.emplace_back(vtkSmartPointer<vtkPointData>::New());
     pd->ShallowCopy(leaf->GetPointData());
-    pd->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+    if (GhostFlags(leaf)) // (merged above; another vtkGhostType is an array as any other)
+    {
+      pd->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+    }
     for (int a = pd->GetNumberOfArrays() - 1; a >= 0; --a)
     {
       if (const char* name = pd->GetArrayName(a))
@@ -181,7 +173,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData wh
   {
     out->AddArray(ghosts);
   }
-  for (std::size_t k = leaves.size(); k-- > 0;) // (the first leaf's keys last: they stay)
+  for (std::size_t k = leaves.size(); k-- > 0;) // (the first leaf's keys last: they win)
   {
     CopyArrayInformation(leaves[k].Points->GetPointData(), out);
   }
@@ -218,7 +210,7 @@ vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData wh
 std::string SkippedLeafWarning(const std::string& leaf, const char* whose)
 {
   return "The composite input's " + leaf + whose +
-    " is not a point set (vtkPointSet): its points are left out.";
+    " is not a point set (vtkPointSet): it is left out.";
 }
 
 std::string DroppedArrayWarning(const std::string& name, const char* whose)

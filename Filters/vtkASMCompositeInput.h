@@ -13,12 +13,11 @@
  * with the same name, type and number of components and a tuple for each of the leaf's points
  * (vtkDataSetAttributes::FieldList; the others
  * are dropped, and named; global ids are kept as other arrays are), unless only the points are
- * asked for. The ghost flags (vtkGhostType) are merged in any case, 0 for a leaf without them, so
- * that flagged points are skipped as in a vtkPointSet input. With the origins, two vtkIdType
- * arrays say where each point came from:
- * "vtkOriginalBlockIds", the leaf's flat index in the composite
- * (vtkCompositeDataIterator::GetCurrentFlatIndex), and LeafPointIdsName, the
- * point's id in that leaf. Integer arrays travel to a sample as its
+ * asked for. The ghost flags (vtkGhostType, when valid: GhostFlags) are merged in any case, 0
+ * for a leaf without them, so that flagged points are skipped as in a vtkPointSet input. With the
+ * origins, two vtkIdType arrays say where each point came from: "vtkOriginalBlockIds", the leaf's
+ * flat index in the composite (vtkCompositeDataIterator::GetCurrentFlatIndex), and
+ * LeafPointIdsName, the point's id in that leaf. Integer arrays travel to a sample as its
  * representative's tuple (vtkASMPointDataAggregation.h), so the output says
  * which leaf, and which point of it, each sample stands for.
  */
@@ -49,9 +48,9 @@ enum class LeafData
 
 /// The leaves of `input` as one cloud (see above). `dropped`: the names of
 /// the arrays left out because some leaf lacks them or has them otherwise.
-/// `skipped` (when given): the leaves with points that are not point sets
-/// (an image, a rectilinear grid: their points are not simplified), as
-/// "block <flat index> (<class>)".
+/// `skipped` (when given): the leaves that are not point sets, but for
+/// datasets without points (an image, a rectilinear grid: their points are
+/// not simplified; a table), as "block <flat index> (<class>)".
 vtkSmartPointer<vtkPolyData> MergeLeaves(vtkCompositeDataSet* input, LeafData what,
   std::vector<std::string>& dropped, std::vector<std::string>* skipped = nullptr);
 

@@ -5,6 +5,8 @@
 // in vtkASMDistributedRedistribute.cxx.
 #include "vtkASMDistributed.h"
 
+#include "vtkASMFilterUtilities.h"
+
 #include "Core/Budget.h"
 #include "Core/CanonicalOrder.h"
 #include "Core/CellFrame.h"
@@ -195,9 +197,8 @@ void GlobalCentroid(const Communication& comm, const double* xyz, asmcore::IdVie
 //------------------------------------------------------------------------------
 void DropGhostPoints(vtkPointSet* input, asmcore::IdView& ids, asmcore::PointIds& list)
 {
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
-    input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  if (!ghosts || ghosts->GetNumberOfTuples() < input->GetNumberOfPoints())
+  vtkUnsignedCharArray* ghosts = GhostFlags(input);
+  if (!ghosts)
   {
     return; // (a short ghost array is not read: it is dropped from the output)
   }

@@ -157,8 +157,8 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   // The owned original points against the whole simplified cloud.
   {
     std::vector<double> nearest, plane;
-    asmcore::SurfaceDistances(
-      oxyz, owned, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
+    asmcore::SurfaceDistances(oxyz, owned, simplifiedTree, options.PlaneNeighbors, &plane, &nearest,
+      execution, options.SurfaceEpsilon);
     result.OriginalToSimplified = Reduce(comm, nearest);
     result.PointToPlane = Reduce(comm, plane);
   }
@@ -175,8 +175,8 @@ DistributedComparison CompareDistributed(const Communication& comm, const double
   }
   const asmcore::Neighbors localTree(oxyz, cloud.Ids(), execution);
   std::vector<double> nearest, plane;
-  asmcore::SurfaceDistances(
-    all.data(), mineToMeasure, localTree, options.PlaneNeighbors, &plane, &nearest, execution);
+  asmcore::SurfaceDistances(all.data(), mineToMeasure, localTree, options.PlaneNeighbors, &plane,
+    &nearest, execution, options.SurfaceEpsilon);
   const std::size_t n = allIds.size();
   const int fields = curvatureNeighbors > 0 ? 4 : 2;
   std::vector<double> perPoint(fields * n, 0.0);

@@ -18,9 +18,11 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,6 +102,16 @@ inline const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>
   const auto range = vtk::DataArrayValueRange<3>(data);
   std::copy(range.begin(), range.end(), copy.begin());
   return copy.data();
+}
+
+/// The ghost flags of `data` that the filters read (vtkGhostType: an
+/// unsigned char array with a value for each point), or null: another
+/// array of that name is an array as any other.
+inline vtkUnsignedCharArray* GhostFlags(vtkPointSet* data)
+{
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
+    data->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  return ghosts && ghosts->GetNumberOfTuples() >= data->GetNumberOfPoints() ? ghosts : nullptr;
 }
 
 /// The relative precision of the coordinates of `points` (the key point

@@ -7,6 +7,7 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkPointData.h"
@@ -473,9 +474,18 @@ void CopyArrayInformation(vtkPointData* from, vtkPointData* to)
     vtkAbstractArray* in = from->GetAbstractArray(i);
     vtkAbstractArray* out =
       in && in->GetName() && in->HasInformation() ? to->GetAbstractArray(in->GetName()) : nullptr;
-    if (out && out != in)
+    if (!out || out == in)
     {
-      out->CopyInformation(in->GetInformation());
+      continue;
+    }
+    // The keys without the cached ranges (CopyInformation drops them), added
+    // to those `out` has: an array with no keys of its own (an information
+    // object is made by a range query) takes nothing away.
+    vtkSmartPointer<vtkAbstractArray> keys = vtk::TakeSmartPointer(in->NewInstance());
+    keys->CopyInformation(in->GetInformation());
+    if (keys->GetInformation()->GetNumberOfKeys() > 0)
+    {
+      out->GetInformation()->Append(keys->GetInformation(), 1);
     }
   }
 }

@@ -76,9 +76,10 @@ void ChooseAmongDuplicates(vtkPointData* inPD, asmcore::Index numberOfPoints,
   std::vector<std::pair<vtkIdType, asmcore::Index>>* ties = nullptr);
 
 /// The information keys (units, GUI hints, ...) of each array of `from`
-/// that has some, given to the array of the same name in `to`, as VTK's
-/// point-subsetting filters keep them (the range keys excepted:
-/// vtkDataArray::CopyInformation drops them).
+/// that has some, added to those of the array of the same name in `to`
+/// (replacing the same keys), as VTK's point-subsetting filters keep them
+/// (the cached range keys excepted: vtkDataArray::CopyInformation drops
+/// them).
 void CopyArrayInformation(vtkPointData* from, vtkPointData* to);
 
 /// -1, 0 or 1: the tuple of point a against that of point b in `array`,

@@ -237,9 +237,22 @@ int vtkKeyPointError::RequestData(
                        "between unrelated clouds.");
   }
 
+  // The planes' precision: the coarser of the two clouds' (a float cloud's
+  // line is off its line by its roundings, and no plane).
+  vtkPoints* simplifiedPoints = simplified->GetPoints();
+  double surfaceEpsilon = std::max(coordinateEpsilon,
+    simplifiedPoints && simplified->GetNumberOfPoints() > 0
+      ? asmvtk::CoordinateEpsilon(simplifiedPoints)
+      : 0.0);
+  if (distributed)
+  {
+    surfaceEpsilon = comm.Max(surfaceEpsilon);
+  }
+
   asmcore::ComparisonOptions options;
   options.Rule.Alpha = this->Alpha;
   options.Rule.CoordinateEpsilon = coordinateEpsilon;
+  options.SurfaceEpsilon = surfaceEpsilon;
   options.CellSize = this->CellSize;
   options.SamplesPerCell = this->SamplesPerCell;
   options.Measure = this->DistanceMeasure == SQUARED_DISTANCE

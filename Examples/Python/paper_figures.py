@@ -12,7 +12,7 @@ arrows point out preserved key points. Bottom row: the same cloud coloured by
 colour range for all columns (5th to 95th percentile of the densest result,
 whatever the order of --fractions). A missing or empty scan, a fraction
 outside (0, 1], an unwritable output or a failed screenshot stop it with a
-message and exit status 1.
+message and a non-zero exit status (2 for a bad command line, 1 otherwise).
 
 Needs an OpenGL context: on a machine without a display run it under Xvfb,
 e.g. Testing/Gui/run-xvfb.sh pvbatch Examples/Python/paper_figures.py.

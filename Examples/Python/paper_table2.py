@@ -26,6 +26,8 @@ from asmvtk import vtkASMSimplify, vtkKeyPointError
 from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkIOPLY import vtkPLYReader
 
+from asm_plugin import fraction_arg, positive_int_arg
+
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 TEST_DATA = os.path.join(REPO, "Testing", "Data")
 
@@ -90,19 +92,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scans", nargs="*",
                         help="PLY files (default: every .ply in Testing/Data)")
-    parser.add_argument("--fraction", type=float, default=0.05,
+    parser.add_argument("--fraction", type=fraction_arg, default=0.05,
                         help="N_s as a fraction of N (default: 0.05)")
-    parser.add_argument("--runs", type=int, default=5,
+    parser.add_argument("--runs", type=positive_int_arg, default=5,
                         help="timed runs of the filter per scan; the median is printed (default: 5)")
     parser.add_argument("--curvature", action="store_true",
                         help="time the filter with its curvature arrays on (GenerateCurvature)")
     parser.add_argument("--with-test-data", action="store_true",
                         help="also run on every .ply in Testing/Data when scans are given")
     args = parser.parse_args()
-    if args.runs < 1:
-        parser.error("--runs must be at least 1")
-    if not 0.0 < args.fraction <= 1.0:
-        parser.error("--fraction must be in (0, 1]")
 
     scans = list(args.scans)
     if not scans or args.with_test_data:

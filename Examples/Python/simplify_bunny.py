@@ -10,9 +10,10 @@ run time, the number of key points and the maximum key point error MKPE
 (output field data; 0 in the default mode, whose key points are the extreme
 input points themselves).
 
-Exits with a message and status 1, writing nothing, when the input is missing
-or holds no points, the fraction is not in (0, 1], or the output name does not
-end in .ply or its directory is not writable.
+Exits with a message and a non-zero status, writing nothing, when the input
+is missing or holds no points, the fraction is not in (0, 1], the output name
+does not end in .ply or its directory is not writable (status 2 for a bad
+command line, 1 otherwise).
 
 The plugin is looked up in this order: --plugin, $ASM_PLUGIN, $PV_PLUGIN_PATH,
 then the build tree (build/lib/paraview-*/plugins/ASM/ASM.so next to this
@@ -55,16 +56,16 @@ def main():
     parser.add_argument("input", nargs="?", default=os.path.join(REPO, "Testing", "Data", "bunny.ply"),
                         help="input PLY file (default: Testing/Data/bunny.ply)")
     parser.add_argument("output", nargs="?", default="asm-output.ply",
-                        help="output PLY file, ending in .ply (default: asm-output.ply)")
+                        help="output PLY file, ending in .ply, lower case (default: asm-output.ply)")
     parser.add_argument("--fraction", type=fraction_arg, default=0.05,
                         help="fraction of the input points to keep, in (0, 1] (default: 0.05)")
     parser.add_argument("--mode", choices=["Feature Preserving", "Paper"], default="Feature Preserving",
                         help="vtkASMSimplify Mode (default: Feature Preserving)")
     parser.add_argument("--plugin", help="path of the ASM plugin library (ASM.so)")
     args = parser.parse_args()
-    if not args.output.lower().endswith(".ply"):
-        # (vtkPLYWriter would append ".ply" and write another file than the one named)
-        parser.error("the output file name must end in .ply: %s" % args.output)
+    if not args.output.endswith(".ply"):
+        # (vtkPLYWriter appends ".ply" to any other name, ".PLY" included: another file than the one named)
+        parser.error("the output file name must end in .ply (lower case): %s" % args.output)
     require_file(args.input)
     require_writable(args.output)
 

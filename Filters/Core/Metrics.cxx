@@ -90,11 +90,12 @@ struct Plane
 // which changed with a rotation of the data): they are not Defined when
 // their spread across the largest axis (the square root of the middle
 // eigenvalue, a Rayleigh quotient of the computed eigenvector, exact to a
-// rounding of the largest one) is within 1e-6 of their spread along it: a
-// line (collinear points, or two positions), or one position (exact
-// duplicates: a covariance of rank 1 at most, from the centroid's
-// rounding, or 0).
-Plane FitPlane(const double* xyz, std::size_t count)
+// rounding of the largest one) is within 1e-6 of their spread along it, or
+// within the rounding of their coordinates (relative precision `epsilon`:
+// a float cloud's line is off its line by its roundings): a line
+// (collinear points, or two positions), or one position (exact duplicates:
+// a covariance of rank 1 at most, from the centroid's rounding, or 0).
+Plane FitPlane(const double* xyz, std::size_t count, double epsilon)
 {
   const double n = static_cast<double>(count);
   Plane plane;
@@ -138,7 +139,9 @@ Plane FitPlane(const double* xyz, std::size_t count)
     normal = v.col(0).normalized();
     const double largest = std::max(0.0, v.col(2).dot(cov * v.col(2)));
     const double middle = std::max(0.0, v.col(1).dot(cov * v.col(1)));
-    plane.Defined = middle > 1e-12 * largest;
+    const double magnitude = std::max({ std::abs(c[0]), std::abs(c[1]), std::abs(c[2]) });
+    const double along = std::sqrt(largest);
+    plane.Defined = std::sqrt(middle) > 1e-6 * along + 2.0 * epsilon * (magnitude + 4.0 * along);
   }
   CopyPoint(normal.data(), plane.Normal);
   return plane;
@@ -154,6 +157,11 @@ Plane FitPlane(const double* xyz, std::size_t count)
 class PlaneFits
 {
 public:
+  /// `epsilon`: the relative precision of the surface's coordinates (FitPlane).
+  explicit PlaneFits(double epsilon)
+    : Epsilon(epsilon)
+  {
+  }
   /// The distance from the answer's query to its neighbours' plane; to the
   /// nearest of them when they span no plane (see FitPlane).
   double Distance(const KNearestAnswer& a)
@@ -204,7 +212,7 @@ public:
       {
         CopyPoint(a.Xyz + 3 * this->Order[i], this->Xyz.data() + 3 * i);
       }
-      const Plane fit = FitPlane(this->Xyz.data(), n);
+      const Plane fit = FitPlane(this->Xyz.data(), n, this->Epsilon);
       if (!keep)
       {
         return DistanceTo(fit, a);
@@ -220,6 +228,7 @@ public:
   }
 
 private:
+  double Epsilon;
   static constexpr std::size_t MaxIds = 16;
   static constexpr std::size_t Slots = 1024;
   struct Entry
@@ -251,7 +260,8 @@ private:
 } // namespace
 
 void SurfaceDistances(const double* xyz, IdView ids, const Neighbors& surface, int k,
-  std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution)
+  std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution,
+  double surfaceEpsilon)
 {
   const double infinity = std::numeric_limits<double>::infinity();
   for (std::vector<double>* d : { plane, nearest })
@@ -269,7 +279,7 @@ void SurfaceDistances(const double* xyz, IdView ids, const Neighbors& surface, i
   k = plane ? std::max(1, k) : 1;
   // (Each range of blocks with planes of its own.)
   auto makeVisit = [&]() -> KNearestVisit {
-    return [&, fits = std::make_shared<PlaneFits>()](const KNearestAnswer& a) {
+    return [&, fits = std::make_shared<PlaneFits>(surfaceEpsilon)](const KNearestAnswer& a) {
       if (nearest)
       {
         (*nearest)[a.Query] = std::sqrt(a.SqDist[0]);
@@ -401,7 +411,8 @@ Comparison CompareClouds(const double* xyz, IdView ids, const Neighbors& origina
   // simplified point's distance to the original surface; each direction in
   // one pass of k-nearest queries.
   std::vector<double> plane, nearest;
-  SurfaceDistances(xyz, ids, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution);
+  SurfaceDistances(xyz, ids, simplifiedTree, options.PlaneNeighbors, &plane, &nearest, execution,
+    options.SurfaceEpsilon);
   result.PointToPlane = Summarize(plane);
   result.OriginalToSimplified = Summarize(nearest);
   if (execution.Report(0.8))
@@ -409,8 +420,8 @@ Comparison CompareClouds(const double* xyz, IdView ids, const Neighbors& origina
     result.Aborted = true;
     return result;
   }
-  SurfaceDistances(
-    sxyz, sids, originalTree, options.PlaneNeighbors, &result.SimplifiedError, &nearest, execution);
+  SurfaceDistances(sxyz, sids, originalTree, options.PlaneNeighbors, &result.SimplifiedError,
+    &nearest, execution, options.SurfaceEpsilon);
   result.SimplifiedToOriginal = Summarize(nearest);
   result.Hausdorff = std::max(result.OriginalToSimplified.Max, result.SimplifiedToOriginal.Max);
   execution.Report(1.0);

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include <cfloat>
+
 namespace asmcore
 {
 class Neighbors;
@@ -50,7 +52,10 @@ VTKASMFILTERS_EXPORT std::vector<double> NearestDistances(
 
 /// For each point xyz[3*id], id in ids: the distance to the plane fitted
 /// (PCA) to its k nearest points of the cloud indexed by `surface`; the
-/// distance to the nearest point when fewer than 3 points are found.
+/// distance to the nearest point when fewer than 3 points are found, or
+/// when they span no plane (one position, or a line: their spread across
+/// their longest axis within 1e-6 of the spread along it or within the
+/// rounding of double coordinates).
 VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(
   const double* xyz, IdView ids, const Neighbors& surface, int k, const Execution& execution = {});
 
@@ -60,8 +65,11 @@ VTKASMFILTERS_EXPORT std::vector<double> PointToPlaneDistances(
 /// gives (either may be null; resized to ids.size()). The queries are made
 /// in blocks of nearby points (ForEachKNearest, BlockNeighbors.h), whatever
 /// the order of the points; each answer is the same as alone.
+/// `surfaceEpsilon`: the relative precision of the surface's coordinates
+/// (FLT_EPSILON for floats), whose roundings do not make a line a plane.
 VTKASMFILTERS_EXPORT void SurfaceDistances(const double* xyz, IdView ids, const Neighbors& surface,
-  int k, std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution = {});
+  int k, std::vector<double>* plane, std::vector<double>* nearest, const Execution& execution = {},
+  double surfaceEpsilon = DBL_EPSILON);
 
 /// Parameters of CompareClouds.
 struct VTKASMFILTERS_EXPORT ComparisonOptions
@@ -71,6 +79,9 @@ struct VTKASMFILTERS_EXPORT ComparisonOptions
   double SamplesPerCell = 8.0; ///< for the automatic cell size, from the simplified count
   KeyPointDistance Measure = KeyPointDistance::Euclidean;
   int PlaneNeighbors = 8; ///< k of the point-to-plane fits
+  /// The relative precision of the clouds' coordinates, the coarser of the
+  /// two (SurfaceDistances: neighbours on a line within it span no plane).
+  double SurfaceEpsilon = DBL_EPSILON;
 };
 
 /// Everything measured between an original and a simplified cloud. Lengths

@@ -134,7 +134,10 @@ TEST(KeyPointErrorDegenerate, DuplicatedSimplifiedPointsGiveNearestPointDistance
 
 // Original points on a line: a simplified point 0.005 off the line, beside
 // an original point, is 0.005 from the original (whatever the plane the
-// solver would have picked through the line: 0 to 0.005 before).
+// solver would have picked through the line: 0 to 0.005 before). Also in
+// float coordinates away from the origin, where the roundings put the
+// points off their line by about 1e-7: still no plane (the review found
+// 0.00062 to 0.005 there, by direction).
 TEST(KeyPointErrorDegenerate, CollinearOriginalPointsGiveTheDistanceToThem)
 {
   Cloud line, off;
@@ -156,6 +159,35 @@ TEST(KeyPointErrorDegenerate, CollinearOriginalPointsGiveTheDistanceToThem)
     {
       EXPECT_NEAR(error->GetTuple1(i), 0.005, 1e-12) << i << (rotated ? " rotated" : "");
     }
+  }
+}
+
+TEST(KeyPointErrorDegenerate, CollinearFloatPointsAwayFromTheOriginSpanNoPlane)
+{
+  Cloud line, off;
+  for (int i = 0; i <= 100; ++i)
+  {
+    Add(line, 1.0 + 0.01 * i, 1.0 + 0.005 * i, 1.0);
+  }
+  const double d = 0.005; // off the line, along directions across it
+  const double across[][3] = { { 0, 0, 1 }, { -0.447214, 0.894427, 0 }, { -0.3, 0.6, 0.741620 } };
+  for (const auto& u : across)
+  {
+    for (int i = 10; i <= 90; i += 20)
+    {
+      Add(off, line[3 * i] + d * u[0], line[3 * i + 1] + d * u[1], line[3 * i + 2] + d * u[2]);
+    }
+  }
+  ErrorFilter run;
+  run.Filter->SetInputData(0, ToPolyData(line, VTK_FLOAT));
+  run.Filter->SetSimplifiedData(ToPolyData(off, VTK_FLOAT));
+  run.Filter->Update();
+  vtkDataArray* error = run.Filter->GetOutput()->GetPointData()->GetArray("Error");
+  ASSERT_NE(error, nullptr);
+  ASSERT_EQ(error->GetNumberOfTuples(), 15);
+  for (vtkIdType i = 0; i < error->GetNumberOfTuples(); ++i)
+  {
+    EXPECT_NEAR(error->GetTuple1(i), d, 1e-6) << i;
   }
 }
 

@@ -100,6 +100,8 @@ check("simplify_bunny: missing input", bunny + ["../in/missing.ply", "a.ply"], w
 check("simplify_bunny: not a PLY file", bunny + ["../in/notes.ply", "a.ply"], work, 1, r"no points read", ["a.ply"])
 check("simplify_bunny: output not .ply", bunny + ["../in/kitten.ply", "a.txt"], work, 2, r"must end in \.ply",
       ["a.txt", "a.txt.ply"])
+check("simplify_bunny: output .PLY", bunny + ["../in/kitten.ply", "a.PLY"], work, 2, r"must end in \.ply",
+      ["a.PLY", "a.PLY.ply"])
 check("simplify_bunny: output directory missing", bunny + ["../in/kitten.ply", "none/a.ply"], work, 1,
       r"does not exist")
 for fraction in ("0", "-0.1", "1.5", "nan", "x"):
@@ -109,12 +111,20 @@ check("simplify_bunny: empty result", bunny + ["../in/kitten.ply", "a.ply", "--f
       r"produced no points", ["a.ply"])
 check("simplify_bunny: --plugin missing", bunny + ["../in/kitten.ply", "a.ply", "--plugin", "none.so"], work, 1,
       r"ASM plugin not found", ["a.ply"])
-# pvpython loads the plugins of PV_PLUGIN_PATH itself; the script then loads the same file (loading
-# another copy, e.g. the build tree's, would register the proxies twice).
+# The plugin from PV_PLUGIN_PATH alone: the scripts copied out of the repository (no build tree
+# next to them to fall back on). pvpython loads the plugins of PV_PLUGIN_PATH itself; the script
+# then loads the same file (loading another copy would register the proxies twice).
+outside = os.path.join(scratch, "scripts")
+shutil.copytree(EXAMPLES, outside)
 environment = dict(os.environ, PV_PLUGIN_PATH=os.path.dirname(os.environ["ASM_PLUGIN"]))
 del environment["ASM_PLUGIN"]
-check("simplify_bunny: plugin from PV_PLUGIN_PATH", bunny + ["../in/kitten.ply", "b.ply", "--fraction", "0.1"],
+check("simplify_bunny: plugin from PV_PLUGIN_PATH",
+      [PVPYTHON, os.path.join(outside, "simplify_bunny.py"), "../in/kitten.ply", "b.ply", "--fraction", "0.1"],
       work, 0, r"N_s       : 521\s", env=environment)
+environment["PV_PLUGIN_PATH"] = scratch
+check("simplify_bunny: no plugin anywhere",
+      [PVPYTHON, os.path.join(outside, "simplify_bunny.py"), "../in/kitten.ply", "c.ply"], work, 1,
+      r"ASM plugin not found", ["c.ply"], env=environment)
 
 # --- time_scans.py and paper_table2.py (the wrapped classes) ----------------------------------
 scans = [PVPYTHON, os.path.join(EXAMPLES, "time_scans.py"), "--runs", "1"]
@@ -148,6 +158,13 @@ png.SetInputConnection(cast.GetOutputPort())
 png.Write()
 check("check_image: a grey PNG against itself", [PVPYTHON, os.path.join(EXAMPLES, "check_image.py"), "grey.png",
                                                 "--baseline", "grey.png"], work, 0, r"mean absolute difference 0\.000")
+
+# --- mpi_scaling.py: its command line (the run itself is not a test) ------------------------
+scaling = [PVPYTHON, os.path.join(EXAMPLES, "mpi_scaling.py")]
+check("mpi_scaling: --points 0", scaling + ["--points", "0"], work, 2, r"--points")
+check("mpi_scaling: --fraction 0", scaling + ["--fraction", "0"], work, 2, r"--fraction")
+check("mpi_scaling: --final-lloyd-iterations 9", scaling + ["--final-lloyd-iterations", "9"], work, 2,
+      r"--final-lloyd-iterations")
 
 # --- mpi_simplify_pieces.py under mpiexec: bad input ends the run (no hang) ------------------
 if MPIEXEC:
