@@ -483,10 +483,7 @@ void CopyArrayInformation(vtkPointData* from, vtkPointData* to)
     // object is made by a range query) takes nothing away.
     vtkSmartPointer<vtkAbstractArray> keys = vtk::TakeSmartPointer(in->NewInstance());
     keys->CopyInformation(in->GetInformation());
-    if (keys->GetInformation()->GetNumberOfKeys() > 0)
-    {
-      out->GetInformation()->Append(keys->GetInformation(), 1);
-    }
+    out->GetInformation()->Append(keys->GetInformation(), 1);
   }
 }
 
