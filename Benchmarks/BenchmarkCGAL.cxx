@@ -24,6 +24,8 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Points = std::vector<Point>;
 
+// The finite points of `input` (CGAL's simplifiers crash on a NaN; ASM
+// skips the non-finite points too).
 std::shared_ptr<const Points> ToCgal(vtkPolyData* input)
 {
   const std::vector<double> xyz = Coordinates(input);
@@ -31,7 +33,10 @@ std::shared_ptr<const Points> ToCgal(vtkPolyData* input)
   points->reserve(xyz.size() / 3);
   for (std::size_t i = 0; i < xyz.size(); i += 3)
   {
-    points->emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
+    if (std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) && std::isfinite(xyz[i + 2]))
+    {
+      points->emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
+    }
   }
   return points;
 }

@@ -387,32 +387,39 @@ Input ReadPLY(const std::string& path)
   {
     input.Data = reader->GetOutput();
   }
+  else
+  {
+    std::cerr << "no points read from " << path << " (not a PLY file, or empty)\n";
+  }
   return input;
 }
 
-std::int64_t ParseCount(const std::string& text)
+bool CheckInputSpec(const std::string& spec, std::string& error)
 {
-  if (text.empty())
+  const std::size_t colon = spec.find(':');
+  if (spec.empty())
   {
-    return -1;
+    error = "an empty input";
+    return false;
   }
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  double scale = 1.0;
-  const std::string suffix(end);
-  if (suffix == "k" || suffix == "K")
+  if (colon == std::string::npos)
   {
-    scale = 1e3;
+    return true;
   }
-  else if (suffix == "M" || suffix == "m")
+  const std::string shape = spec.substr(0, colon);
+  if (shape != "bumps" && shape != "spikes" && shape != "bracket" && shape != "terrain")
   {
-    scale = 1e6;
+    error = Quoted(spec) + ": unknown synthetic shape " + Quoted(shape) +
+      " (bumps, spikes, bracket, terrain)";
+    return false;
   }
-  else if (!suffix.empty())
+  const std::string count = spec.substr(colon + 1);
+  if (ParseCount(count) <= 0)
   {
-    return -1;
+    error = Quoted(spec) + ": " + CountError(count);
+    return false;
   }
-  return value > 0.0 ? static_cast<std::int64_t>(std::llround(value * scale)) : -1;
+  return true;
 }
 
 Input MakeInput(const std::string& spec)
@@ -426,9 +433,10 @@ Input MakeInput(const std::string& spec)
   const std::int64_t n = ParseCount(spec.substr(colon + 1));
   Input none;
   none.Name = spec;
-  if (n <= 0)
+  std::string error;
+  if (!CheckInputSpec(spec, error))
   {
-    std::cerr << "bad point count in " << spec << "\n";
+    std::cerr << "input " << error << "\n";
     return none;
   }
   Input input;
@@ -458,6 +466,41 @@ Input MakeInput(const std::string& spec)
     input.Name += "-" + CountName(n);
   }
   return input;
+}
+
+std::int64_t DropNonFinite(Input& input)
+{
+  const vtkIdType n = input.NumberOfPoints();
+  std::vector<vtkIdType> kept;
+  kept.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input.Data->GetPoint(i, p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      kept.push_back(i);
+    }
+  }
+  const auto dropped = static_cast<std::int64_t>(n) - static_cast<std::int64_t>(kept.size());
+  if (dropped > 0)
+  {
+    vtkNew<vtkFloatArray> coords;
+    coords->SetNumberOfComponents(3);
+    coords->SetNumberOfTuples(static_cast<vtkIdType>(kept.size()));
+    for (std::size_t j = 0; j < kept.size(); ++j)
+    {
+      double p[3];
+      input.Data->GetPoint(kept[j], p);
+      coords->SetTuple(static_cast<vtkIdType>(j), p);
+    }
+    vtkNew<vtkPoints> points;
+    points->SetData(coords);
+    auto data = vtkSmartPointer<vtkPolyData>::New();
+    data->SetPoints(points);
+    input.Data = data;
+  }
+  return dropped;
 }
 
 std::vector<double> Coordinates(vtkPointSet* data)

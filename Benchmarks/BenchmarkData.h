@@ -19,6 +19,8 @@
 #ifndef asm_BenchmarkData_h
 #define asm_BenchmarkData_h
 
+#include "BenchmarkArgs.h" // ParseCount
+
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
@@ -51,12 +53,22 @@ Input MakeTerrain(std::int64_t n, std::uint64_t seed = 4);
 /// (with a message on stderr) when it cannot be read.
 Input ReadPLY(const std::string& path);
 
-/// Parses a size such as "100k", "1M", "14M" or "5000"; -1 when invalid.
-std::int64_t ParseCount(const std::string& text);
-
 /// An input given on the command line: a path to a .ply file, or
-/// "bumps:1M", "spikes:100k", "bracket:100k", "terrain:100k".
+/// "bumps:1M", "spikes:100k", "bracket:100k", "terrain:100k" (at most
+/// MaxPointCount points). Empty Data (with a message on stderr naming the
+/// input) when it cannot be read or made.
 Input MakeInput(const std::string& spec);
+
+/// Whether `spec` can be an input: a synthetic spec must name a shape and a
+/// valid count (`error` says why not, naming the spec); a path is checked
+/// when it is read (MakeInput). The programs check their inputs with it
+/// before any work.
+bool CheckInputSpec(const std::string& spec, std::string& error);
+
+/// Leaves out the points of `input` with a NaN or infinite coordinate (a
+/// copy of the others replaces input.Data when there are any); returns how
+/// many were left out.
+std::int64_t DropNonFinite(Input& input);
 
 /// The coordinates of a point set as x y z doubles.
 std::vector<double> Coordinates(vtkPointSet* data);

@@ -242,6 +242,13 @@ bool ApplyAsmSettings(vtkASMSimplify* filter, const std::string& settings, std::
   return true;
 }
 
+const std::vector<std::string>& PeerMethodNames()
+{
+  static const std::vector<std::string> names = { "vtkVoxelGrid", "vtkMaskPoints random",
+    "vtkMaskPoints strat.", "CGAL grid", "CGAL hierarchy" };
+  return names;
+}
+
 bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error)
 {
   const std::size_t colon = spec.find(':');
@@ -257,6 +264,14 @@ bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& er
     if (standard.Name == config.Name)
     {
       error = "\"" + config.Name + "\" is the name of a standard configuration";
+      return false;
+    }
+  }
+  for (const std::string& peer : PeerMethodNames())
+  {
+    if (peer == config.Name)
+    {
+      error = "\"" + config.Name + "\" is the name of a peer method";
       return false;
     }
   }

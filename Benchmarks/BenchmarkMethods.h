@@ -59,8 +59,13 @@ bool ApplyAsmSettings(vtkASMSimplify* filter, const std::string& settings, std::
 /// The property names ApplyAsmSettings knows, comma separated.
 std::string AsmSettingNames();
 
+/// The names of the peers' methods (Method::Name of MakeVoxelGrid,
+/// MakeMaskPoints, MakeCgalGrid, MakeCgalHierarchy).
+const std::vector<std::string>& PeerMethodNames();
+
 /// A variant from "NAME:SETTINGS" (--asm): the default mode (or the paper
-/// mode with Mode=paper) with those settings, curvature off.
+/// mode with Mode=paper) with those settings, curvature off. NAME must not
+/// be the name of a standard configuration or of a peer (PeerMethodNames).
 bool ParseAsmVariant(const std::string& spec, AsmConfig& config, std::string& error);
 
 /// The programs' --asm: ParseAsmVariant(spec) appended to `configs`; false

@@ -17,8 +17,16 @@
  * "bracket:100k", "terrain:100k" (with known feature points) or "bumps:1M".
  * Default inputs: the bundled scans (Testing/Data) and the three synthetic
  * shapes at 100 k points; inputs named on the command line are added (an
- * input whose name is already in the list is skipped).
+ * input whose name is already in the list is skipped, with a message).
+ * --quick sets the inputs and fractions: --inputs or --fractions with it
+ * are an error (inputs after the options are added).
+ *
+ * A bad option exits with status 2 before any work. An input that cannot be
+ * read (a missing, empty or non-PLY file) is reported and skipped, the other
+ * inputs run, and the program exits with status 1. Points with a NaN or
+ * infinite coordinate are left out of an input (with a message).
  */
+#include "BenchmarkArgs.h"
 #include "BenchmarkData.h"
 #include "BenchmarkMethods.h"
 #include "BenchmarkReport.h"
@@ -198,6 +206,8 @@ void Usage()
     << "usage: asm_quality_benchmark [--fractions 0.01,0.05,0.2] [--inputs spec,...]\n"
        "                             [--quick] [--markdown] [--asm NAME:SETTINGS ...] [input ...]\n"
        "input: a .ply path, or spikes:100k, bracket:100k, terrain:100k, bumps:1M\n"
+       "--fractions: each in (0, 1], distinct\n"
+       "--quick: kitten and spikes:20k at 5 % (not with --inputs or --fractions)\n"
        "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
        "       (the default mode with those properties; Mode=paper for the paper mode)\n";
 }
@@ -218,55 +228,73 @@ int main(int argc, char* argv[])
   bool markdown = false;
   std::vector<std::string> extra;
   std::vector<AsmConfig> variants;
-  for (int i = 1; i < argc; ++i)
+  try
   {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h")
+    bool quick = false, listed = false;
+    for (int i = 1; i < argc; ++i)
     {
-      Usage();
-      return 0;
-    }
-    else if (arg == "--quick")
-    {
-      inputs = { std::string(ASM_BENCHMARK_DATA_DIR) + "/kitten.ply", "spikes:20k" };
-      fractions = { 0.05 };
-    }
-    else if (arg == "--markdown")
-    {
-      markdown = true;
-    }
-    else if ((arg == "--fractions" || arg == "--inputs") && i + 1 < argc)
-    {
-      const std::vector<std::string> items = SplitList(argv[++i]);
-      if (arg == "--inputs")
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h")
       {
-        inputs = items;
+        Usage();
+        return 0;
+      }
+      else if (arg == "--quick")
+      {
+        quick = true;
+        inputs = { std::string(ASM_BENCHMARK_DATA_DIR) + "/kitten.ply", "spikes:20k" };
+        fractions = { 0.05 };
+      }
+      else if (arg == "--markdown")
+      {
+        markdown = true;
+      }
+      else if (arg == "--inputs")
+      {
+        listed = true;
+        inputs = ParseList(arg, OptionValue(argc, argv, i),
+          [](const std::string&, const std::string& spec) { return spec; });
+      }
+      else if (arg == "--fractions")
+      {
+        listed = true;
+        fractions = ParseFractionList(arg, OptionValue(argc, argv, i));
+      }
+      else if (arg == "--asm")
+      {
+        if (!AddAsmVariant(OptionValue(argc, argv, i), variants))
+        {
+          return 2;
+        }
+      }
+      else if (arg.compare(0, 2, "--") == 0)
+      {
+        throw UsageError("unknown option " + Quoted(arg));
       }
       else
       {
-        fractions.clear();
-        for (const auto& f : items)
-        {
-          fractions.push_back(std::atof(f.c_str()));
-        }
+        extra.push_back(arg);
       }
     }
-    else if (arg == "--asm" && i + 1 < argc)
+    if (quick && listed)
     {
-      if (!AddAsmVariant(argv[++i], variants))
+      throw UsageError("--inputs and --fractions cannot be given with --quick (--quick sets them)");
+    }
+    std::vector<std::string> specs = inputs;
+    specs.insert(specs.end(), extra.begin(), extra.end());
+    for (const std::string& spec : specs)
+    {
+      std::string error;
+      if (!CheckInputSpec(spec, error))
       {
-        return 2;
+        throw UsageError("input: " + error);
       }
     }
-    else if (arg.compare(0, 2, "--") == 0)
-    {
-      Usage();
-      return 2;
-    }
-    else
-    {
-      extra.push_back(arg);
-    }
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << "asm_quality_benchmark: " << e.what() << "\n";
+    return 2;
   }
   inputs.insert(inputs.end(), extra.begin(), extra.end());
 
@@ -302,15 +330,35 @@ int main(int argc, char* argv[])
   ratioHeader.push_back("hole / vtkVoxelGrid");
   Table ratios(ratioHeader);
   std::set<std::string> seen;
+  std::vector<std::string> unreadable;
   std::vector<Case> cases;
   for (const std::string& spec : inputs)
   {
     Input input = MakeInput(spec);
-    if (!input.Data || seen.count(input.Name))
+    if (!input.Data)
     {
+      std::cerr << "asm_quality_benchmark: input " << spec << " skipped (not readable)\n";
+      unreadable.push_back(spec);
+      continue;
+    }
+    if (seen.count(input.Name))
+    {
+      std::cerr << "asm_quality_benchmark: input " << spec << " skipped (an input named "
+                << input.Name << " is in the list already)\n";
       continue;
     }
     seen.insert(input.Name);
+    // The measures need finite points (ASM and CGAL's peers skip the others).
+    if (const std::int64_t dropped = DropNonFinite(input))
+    {
+      std::cerr << "asm_quality_benchmark: " << dropped << " point(s) of " << spec
+                << " with a NaN or infinite coordinate left out\n";
+      if (input.NumberOfPoints() == 0)
+      {
+        unreadable.push_back(spec);
+        continue;
+      }
+    }
     const vtkIdType n = input.NumberOfPoints();
     const Reference reference(Coordinates(input.Data), input.Features);
     for (double fraction : fractions)
@@ -492,6 +540,16 @@ int main(int argc, char* argv[])
     std::set<std::string> others = variantNames;
     others.insert("ASM default");
     PrintTargets(cases, fractions, name, others);
+  }
+  if (!unreadable.empty())
+  {
+    std::cerr << "asm_quality_benchmark: " << unreadable.size() << " input(s) not read:";
+    for (const std::string& spec : unreadable)
+    {
+      std::cerr << " " << spec;
+    }
+    std::cerr << "\n";
+    return 1;
   }
   return 0;
 }

@@ -25,9 +25,18 @@
  * run on one thread and simplify in place: each run works on a copy of the
  * points made before its clock starts, and their memory counts that copy.
  *
- * --readme: the README's run, sized for ~15 minutes on 2 idle cores: bunny,
+ * --readme: the README's run, ~7 minutes on 2 idle cores: bunny,
  * bunny-scans (../shared/data), bumps at 100k, 1M, 4M, 14M; N_s = 5 % (and 1 %,
- * 20 % on bumps-1M); curvature off (also on at bumps-4M); runs 5.
+ * 20 % on bumps-1M); curvature off (also on at bumps-4M); runs 5; threads 1
+ * and 2. It sets the inputs, fractions, runs and threads itself: --inputs,
+ * --fractions, --runs, --threads or --quick with it are an error. --quick
+ * sets the inputs, fractions and runs: --inputs, --fractions or --runs with
+ * it are an error (more inputs after the options are added in both cases).
+ *
+ * A bad option exits with status 2 before any work. An input that cannot be
+ * read (a missing, empty or non-PLY file) is reported and skipped, the other
+ * inputs run, and the program exits with status 1. Two inputs of the same
+ * name (kitten.ply and sub/kitten.ply) are told apart by a suffix ("kitten#2").
  *
  * Inputs: .ply paths, or synthetic "bumps:100k" ... "bumps:14M" (a bumpy
  * sphere sampled uniformly by area). Default: the bundled scans and bumps
@@ -40,6 +49,7 @@
  * beyond the input and the output, in bytes per input point (measured once,
  * with the first thread count, in a forked child: see PeakExtraBytes).
  */
+#include "BenchmarkArgs.h"
 #include "BenchmarkData.h"
 #include "BenchmarkMethods.h"
 #include "BenchmarkReport.h"
@@ -56,6 +66,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 
 using namespace asmbench;
 
@@ -72,6 +83,9 @@ void Usage()
        "--readme: the README's run (~7 min on 2 idle cores): bunny, bunny-scans, bumps "
        "100k..14M,\n"
        "          N_s 5 % (1 %, 20 % on bumps-1M), curvature off (on too at 4M), 1 and 2 threads\n"
+       "          (not with --quick, --inputs, --fractions, --runs or --threads)\n"
+       "--quick: kitten and bumps:20k at 5 %, 1 run (not with --inputs, --fractions or --runs)\n"
+       "--fractions: each in (0, 1], distinct; --threads, --runs: integers >= 1\n"
        "--asm: one more ASM row, e.g. --asm \"ASM fast:FillHoles=0,FinalLloydIterations=0\"\n"
        "       (the default mode with those properties; Mode=paper for the paper mode)\n"
        "--cgal: also CGAL's grid and hierarchy simplification (built with libcgal-dev)\n"
@@ -190,97 +204,126 @@ int main(int argc, char* argv[])
   bool markdown = false, memory = true, readme = false, cgal = false;
   std::vector<std::string> extra;
   std::vector<AsmConfig> configs = AsmConfigurations(); // and the variants (--asm)
-  for (int i = 1; i < argc; ++i)
+  std::set<std::string> given; // the options given (checked against --quick, --readme)
+  try
   {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--help" || arg == "-h")
+    for (int i = 1; i < argc; ++i)
     {
-      Usage();
-      return 0;
-    }
-    else if (arg == "--quick")
-    {
-      inputs = { data + "/kitten.ply", "bumps:20k" };
-      fractions = { 0.05 };
-      runs = 1;
-    }
-    else if (arg == "--readme")
-    {
-      readme = true;
-    }
-    else if (arg == "--markdown")
-    {
-      markdown = true;
-    }
-    else if (arg == "--cgal")
-    {
-      cgal = true;
-      if (!HaveCGAL())
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h")
       {
-        std::cerr << "--cgal: this build has no CGAL (install libcgal-dev and reconfigure)\n";
-        return 2;
+        Usage();
+        return 0;
+      }
+      else if (arg == "--quick")
+      {
+        inputs = { data + "/kitten.ply", "bumps:20k" };
+        fractions = { 0.05 };
+        runs = 1;
+      }
+      else if (arg == "--readme")
+      {
+        readme = true;
+      }
+      else if (arg == "--markdown")
+      {
+        markdown = true;
+      }
+      else if (arg == "--cgal")
+      {
+        cgal = true;
+        if (!HaveCGAL())
+        {
+          throw UsageError("--cgal: this build has no CGAL (install libcgal-dev and reconfigure)");
+        }
+      }
+      else if (arg == "--no-memory")
+      {
+        memory = false;
+      }
+      else if (arg == "--runs")
+      {
+        runs = static_cast<int>(ParseInteger(arg, OptionValue(argc, argv, i), 1, 1000000));
+      }
+      else if (arg == "--inputs")
+      {
+        inputs = ParseList(arg, OptionValue(argc, argv, i),
+          [](const std::string&, const std::string& spec) { return spec; });
+      }
+      else if (arg == "--fractions")
+      {
+        fractions = ParseFractionList(arg, OptionValue(argc, argv, i));
+      }
+      else if (arg == "--threads")
+      {
+        threads.clear();
+        for (long t : ParseIntegerList(arg, OptionValue(argc, argv, i), 1, 4096))
+        {
+          threads.push_back(static_cast<int>(t));
+        }
+      }
+      else if (arg == "--backend")
+      {
+        Backend = OptionValue(argc, argv, i);
+        if (!vtkSMPTools::SetBackend(Backend.c_str()))
+        {
+          throw UsageError("--backend: this VTK has no vtkSMPTools backend " + Quoted(Backend));
+        }
+      }
+      else if (arg == "--asm")
+      {
+        if (!AddAsmVariant(OptionValue(argc, argv, i), configs))
+        {
+          return 2;
+        }
+      }
+      else if (arg.compare(0, 2, "--") == 0)
+      {
+        throw UsageError("unknown option " + Quoted(arg));
+      }
+      else
+      {
+        extra.push_back(arg);
+      }
+      given.insert(arg);
+    }
+    for (const char* mode : { "--readme", "--quick" })
+    {
+      if (!given.count(mode))
+      {
+        continue;
+      }
+      for (const char* option : { "--inputs", "--fractions", "--runs", "--threads", "--quick" })
+      {
+        const bool allowed = std::string(option) == mode ||
+          (std::string(mode) == "--quick" && std::string(option) == "--threads");
+        if (given.count(option) && !allowed)
+        {
+          throw UsageError(
+            std::string(option) + " cannot be given with " + mode + " (" + mode + " sets it)");
+        }
       }
     }
-    else if (arg == "--no-memory")
+    std::vector<std::string> specs = inputs;
+    specs.insert(specs.end(), extra.begin(), extra.end());
+    for (const std::string& spec : specs)
     {
-      memory = false;
-    }
-    else if (arg == "--runs" && hasValue)
-    {
-      runs = std::max(1, std::atoi(argv[++i]));
-    }
-    else if (arg == "--inputs" && hasValue)
-    {
-      inputs = SplitList(argv[++i]);
-    }
-    else if (arg == "--fractions" && hasValue)
-    {
-      fractions.clear();
-      for (const auto& f : SplitList(argv[++i]))
+      std::string error;
+      if (!CheckInputSpec(spec, error))
       {
-        fractions.push_back(std::atof(f.c_str()));
+        throw UsageError("input: " + error);
       }
-    }
-    else if (arg == "--threads" && hasValue)
-    {
-      threads.clear();
-      for (const auto& t : SplitList(argv[++i]))
-      {
-        threads.push_back(std::max(1, std::atoi(t.c_str())));
-      }
-    }
-    else if (arg == "--backend" && hasValue)
-    {
-      Backend = argv[++i];
-      if (!vtkSMPTools::SetBackend(Backend.c_str()))
-      {
-        std::cerr << "--backend: this VTK has no vtkSMPTools backend " << Backend << "\n";
-        return 2;
-      }
-    }
-    else if (arg == "--asm" && hasValue)
-    {
-      if (!AddAsmVariant(argv[++i], configs))
-      {
-        return 2;
-      }
-    }
-    else if (arg.compare(0, 2, "--") == 0)
-    {
-      Usage();
-      return 2;
-    }
-    else
-    {
-      extra.push_back(arg);
     }
   }
-
+  catch (const UsageError& e)
+  {
+    std::cerr << "asm_speed_benchmark: " << e.what() << "\n";
+    return 2;
+  }
   std::vector<Job> jobs;
   if (readme)
   {
-    // The README's run (issue 8's inputs, trimmed to ~15 minutes on 2 cores).
+    // The README's run (issue 8's inputs, trimmed to ~7 minutes on 2 cores).
     jobs.push_back({ data + "/bunny.ply", { 0.05 }, false, 5 });
     const std::string scans = ASM_BENCHMARK_SHARED_DATA_DIR "/bunny-scans.ply";
     if (std::ifstream(scans).good())
@@ -339,13 +382,27 @@ int main(int argc, char* argv[])
     perPoint; // key: config@fraction
   std::vector<std::string> order;
   std::vector<Record> records;
+  std::vector<std::string> unreadable;
   for (const Job& job : jobs)
   {
     SetThreads(threads.back());
-    const Input input = MakeInput(job.Spec);
+    Input input = MakeInput(job.Spec);
     if (!input.Data)
     {
+      std::cerr << "asm_speed_benchmark: input " << job.Spec << " skipped (not readable)\n";
+      unreadable.push_back(job.Spec);
       continue;
+    }
+    // Two inputs of one name (kitten.ply, sub/kitten.ply): "kitten#2" for the second.
+    const std::string name = input.Name;
+    for (int copy = 2; std::find(order.begin(), order.end(), input.Name) != order.end(); ++copy)
+    {
+      input.Name = name + "#" + std::to_string(copy);
+    }
+    if (input.Name != name)
+    {
+      std::cerr << "asm_speed_benchmark: a second input named " << name << " (" << job.Spec
+                << ") is reported as " << input.Name << "\n";
     }
     order.push_back(input.Name);
     const vtkIdType n = input.NumberOfPoints();
@@ -495,5 +552,15 @@ int main(int argc, char* argv[])
   PrintTargets(records, threads);
   std::cout << "\n# load average at the end: " << LoadAverage() << "; wall time "
             << Fixed(Now() - started, 0) << " s\n";
+  if (!unreadable.empty())
+  {
+    std::cerr << "asm_speed_benchmark: " << unreadable.size() << " input(s) not read:";
+    for (const std::string& spec : unreadable)
+    {
+      std::cerr << " " << spec;
+    }
+    std::cerr << "\n";
+    return 1;
+  }
   return 0;
 }

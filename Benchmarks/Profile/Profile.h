@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -37,8 +38,13 @@ inline double Cpu()
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+/// The median of `v` (NaN when empty).
 inline double Median(std::vector<double> v)
 {
+  if (v.empty())
+  {
+    return std::nan("");
+  }
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);

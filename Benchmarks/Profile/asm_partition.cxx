@@ -11,6 +11,9 @@
  *   asm_partition [--input bumps:2M | file.ply] [--fraction 0.01]
  *                 [--processes 2,4,8,16,32,64] [--halo 2,6]
  *
+ * A bad option exits with status 2 before any work, an input without any
+ * finite point with status 1 (non-finite points are left out, as ASM does).
+ *
  * Prints, per K and halo width (cell rings; 2: Paper mode, 6: the default
  * mode): the points held over all processes (owned + halo) per input point,
  * and the largest process's held points per N / K (its work and memory
@@ -18,6 +21,7 @@
  * build (one thread; a distributed run builds them over N / K points per
  * process).
  */
+#include "BenchmarkArgs.h"
 #include "BenchmarkData.h"
 #include "Core/CellPartition.h"
 #include "Core/CellSize.h"
@@ -25,6 +29,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -33,18 +38,6 @@
 
 namespace
 {
-std::vector<int> ParseList(const std::string& text)
-{
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    values.push_back(std::atoi(item.c_str()));
-  }
-  return values;
-}
-
 // Slabs of the longest axis: each axis index goes to the slab holding the
 // middle of its points (contiguous slabs of about N / K points).
 std::vector<int> SlabOfIndex(
@@ -76,39 +69,88 @@ int main(int argc, char* argv[])
   double fraction = 0.01;
   std::vector<int> processes = { 2, 4, 8, 16, 32, 64 };
   std::vector<int> halos = { 2, 6 };
-  for (int a = 1; a + 1 < argc; a += 2)
+  const char* usage = "usage: asm_partition [--input bumps:2M | file.ply] [--fraction 0.01]\n"
+                      "                     [--processes 2,4,8,16,32,64] [--halo 2,6]\n";
+  try
   {
-    const std::string flag = argv[a];
-    const std::string value = argv[a + 1];
-    if (flag == "--input")
+    for (int a = 1; a < argc; ++a)
     {
-      input = value;
+      const std::string flag = argv[a];
+      if (flag == "--help" || flag == "-h")
+      {
+        std::printf("%s", usage);
+        return 0;
+      }
+      else if (flag == "--input")
+      {
+        input = asmbench::OptionValue(argc, argv, a);
+        std::string error;
+        if (!asmbench::CheckInputSpec(input, error))
+        {
+          throw asmbench::UsageError("--input: " + error);
+        }
+      }
+      else if (flag == "--fraction")
+      {
+        fraction = asmbench::ParseFraction(flag, asmbench::OptionValue(argc, argv, a));
+      }
+      else if (flag == "--processes")
+      {
+        processes.clear();
+        for (long k :
+          asmbench::ParseIntegerList(flag, asmbench::OptionValue(argc, argv, a), 1, 4096))
+        {
+          processes.push_back(static_cast<int>(k));
+        }
+      }
+      else if (flag == "--halo")
+      {
+        halos.clear();
+        for (long h :
+          asmbench::ParseIntegerList(flag, asmbench::OptionValue(argc, argv, a), 0, 1000))
+        {
+          halos.push_back(static_cast<int>(h));
+        }
+      }
+      else
+      {
+        throw asmbench::UsageError("unknown option " + asmbench::Quoted(flag));
+      }
     }
-    else if (flag == "--fraction")
-    {
-      fraction = std::atof(value.c_str());
-    }
-    else if (flag == "--processes")
-    {
-      processes = ParseList(value);
-    }
-    else if (flag == "--halo")
-    {
-      halos = ParseList(value);
-    }
-    else
-    {
-      std::fprintf(stderr, "unknown option %s\n", flag.c_str());
-      return 1;
-    }
+  }
+  catch (const asmbench::UsageError& e)
+  {
+    std::fprintf(stderr, "asm_partition: %s\n", e.what());
+    return 2;
   }
   const asmbench::Input in = asmbench::MakeInput(input);
   if (in.NumberOfPoints() == 0)
   {
-    std::fprintf(stderr, "no points in %s\n", input.c_str());
+    std::fprintf(stderr, "asm_partition: no points in %s\n", input.c_str());
     return 1;
   }
-  const std::vector<double> xyz = asmbench::Coordinates(in.Data);
+  // The finite points only (the core's cell size and grid need finite bounds).
+  std::vector<double> xyz = asmbench::Coordinates(in.Data);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < xyz.size(); i += 3)
+  {
+    if (std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) && std::isfinite(xyz[i + 2]))
+    {
+      std::copy(xyz.begin() + i, xyz.begin() + i + 3, xyz.begin() + kept);
+      kept += 3;
+    }
+  }
+  if (kept < xyz.size())
+  {
+    std::fprintf(stderr, "asm_partition: %zu non-finite point(s) of %s left out\n",
+      (xyz.size() - kept) / 3, input.c_str());
+    xyz.resize(kept);
+  }
+  if (xyz.empty())
+  {
+    std::fprintf(stderr, "asm_partition: no finite points in %s\n", input.c_str());
+    return 1;
+  }
   const auto n = static_cast<asmcore::Index>(xyz.size() / 3);
   const asmcore::IdView ids = asmcore::IdView::Identity(static_cast<std::size_t>(n));
   const asmcore::Bounds bounds = asmcore::ComputeBounds(xyz.data(), ids);

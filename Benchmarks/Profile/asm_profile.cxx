@@ -36,8 +36,13 @@
  * comparisons; with each point's ClusterSize). Times: medians of wall and of process CPU time (the
  * latter is robust to a loaded machine). Peak memory: VmHWM after resetting it (clear_refs 5) once
  * the input exists, minus the resident size then, per input point.
+ *
+ * A bad option (or a --dump path that cannot be written) exits with status 2
+ * before any work; a --ply without points, with status 1.
  */
 #include "Profile.h"
+
+#include "BenchmarkArgs.h"
 
 #ifdef ASM_PROFILE_SETTINGS
 #include "BenchmarkMethods.h"
@@ -162,23 +167,6 @@ vtkSmartPointer<vtkPolyData> Synthetic(vtkIdType n, unsigned seed, bool coherent
   return poly;
 }
 
-std::vector<long> ParseList(const char* s)
-{
-  std::vector<long> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-  {
-    double x = std::atof(item.c_str());
-    if (!item.empty() && (item.back() == 'k' || item.back() == 'K'))
-      x *= 1e3;
-    if (!item.empty() && (item.back() == 'M' || item.back() == 'm'))
-      x *= 1e6;
-    v.push_back(static_cast<long>(x));
-  }
-  return v;
-}
-
 } // namespace
 
 // RGB colour, intensity and normals, as a scanner writes them (values from
@@ -256,59 +244,87 @@ int main(int argc, char* argv[])
   int mode = -1;
   std::string settings;
   std::string backend = "STDThread";
-  for (int i = 1; i < argc; ++i)
+  const char* usage =
+    "usage: asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]\n"
+    "                   [--fraction F] [--curvature] [--ply file] [--stages] [--floor]\n"
+    "                   [--dump file] [--coherent] [--mode paper|feature] [--arrays]\n"
+    "                   [--set Name=value,...] [--error] [--loops] [--backend B]\n"
+    "(each option is described in the header of Benchmarks/Profile/asm_profile.cxx)\n";
+  std::string plyPath, dumpPath;
+  try
   {
-    const std::string a = argv[i];
-    const char* next = i + 1 < argc ? argv[i + 1] : "";
-    if (a == "--points")
-      sizes = ParseList(next), ++i;
-    else if (a == "--threads")
-      threads = ParseList(next), threadsGiven = true, ++i;
-    else if (a == "--runs")
-      runs = std::atoi(next), ++i;
-    else if (a == "--fraction")
-      fraction = std::atof(next), ++i;
-    else if (a == "--ply")
-      ply = next, ++i;
-    else if (a == "--dump")
-      dump = next, ++i;
-    else if (a == "--mode")
-      mode =
-        std::string(next) == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING,
-      ++i;
-    else if (a == "--set")
-      settings = next, ++i;
-    else if (a == "--backend")
-      backend = next, ++i;
-    else if (a == "--curvature")
-      curvature = true;
-    else if (a == "--coherent")
-      coherent = true;
-    else if (a == "--arrays")
-      arrays = true;
-    else if (a == "--stages")
-      stages = true;
-    else if (a == "--floor")
-      floor = true;
-    else if (a == "--error")
-      error = true;
-    else if (a == "--loops")
-      loops = true;
-    else
+    for (int i = 1; i < argc; ++i)
     {
-      const bool help = a == "--help" || a == "-h";
-      if (!help)
+      const std::string a = argv[i];
+      if (a == "--points")
       {
-        std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+        sizes.clear();
+        for (std::int64_t n : asmbench::ParseCountList(a, asmbench::OptionValue(argc, argv, i)))
+          sizes.push_back(static_cast<long>(n));
       }
-      std::fprintf(help ? stdout : stderr,
-        "usage: asm_profile [--points N[,N...]] [--threads T[,T...]] [--runs R]\n"
-        "                   [--fraction F] [--curvature] [--ply file] [--stages] [--floor]\n"
-        "                   [--dump file] [--coherent] [--mode paper|feature] [--arrays]\n"
-        "                   [--set Name=value,...] [--error] [--loops] [--backend B]\n"
-        "(each option is described in the header of Benchmarks/Profile/asm_profile.cxx)\n");
-      return help ? 0 : 2;
+      else if (a == "--threads")
+        threads = asmbench::ParseIntegerList(a, asmbench::OptionValue(argc, argv, i), 1, 4096),
+        threadsGiven = true;
+      else if (a == "--runs")
+        runs = static_cast<int>(
+          asmbench::ParseInteger(a, asmbench::OptionValue(argc, argv, i), 1, 1000000));
+      else if (a == "--fraction")
+        fraction = asmbench::ParseFraction(a, asmbench::OptionValue(argc, argv, i));
+      else if (a == "--ply")
+      {
+        plyPath = asmbench::OptionValue(argc, argv, i);
+        if (plyPath.empty())
+          throw asmbench::UsageError("--ply: an empty path");
+        ply = plyPath.c_str();
+      }
+      else if (a == "--dump")
+      {
+        dumpPath = asmbench::OptionValue(argc, argv, i);
+        std::FILE* f = dumpPath.empty() ? nullptr : std::fopen(dumpPath.c_str(), "w");
+        if (!f)
+          throw asmbench::UsageError("--dump: cannot write " + asmbench::Quoted(dumpPath));
+        std::fclose(f);
+        dump = dumpPath.c_str();
+      }
+      else if (a == "--mode")
+      {
+        const std::string value = asmbench::OptionValue(argc, argv, i);
+        if (value != "paper" && value != "feature")
+          throw asmbench::UsageError(
+            "--mode: " + asmbench::Quoted(value) + " is not paper or feature");
+        mode = value == "paper" ? vtkASMSimplify::PAPER : vtkASMSimplify::FEATURE_PRESERVING;
+      }
+      else if (a == "--set")
+        settings = asmbench::OptionValue(argc, argv, i);
+      else if (a == "--backend")
+        backend = asmbench::OptionValue(argc, argv, i);
+      else if (a == "--curvature")
+        curvature = true;
+      else if (a == "--coherent")
+        coherent = true;
+      else if (a == "--arrays")
+        arrays = true;
+      else if (a == "--stages")
+        stages = true;
+      else if (a == "--floor")
+        floor = true;
+      else if (a == "--error")
+        error = true;
+      else if (a == "--loops")
+        loops = true;
+      else if (a == "--help" || a == "-h")
+      {
+        std::printf("%s", usage);
+        return 0;
+      }
+      else
+        throw asmbench::UsageError("unknown argument " + asmbench::Quoted(a));
     }
+  }
+  catch (const asmbench::UsageError& e)
+  {
+    std::fprintf(stderr, "asm_profile: %s\n", e.what());
+    return 2;
   }
   // The settings are applied to every run's filter; checked here once.
   auto applySettings = [&settings](vtkASMSimplify* filter) {
@@ -348,6 +364,12 @@ int main(int argc, char* argv[])
       reader->SetFileName(ply);
       reader->Update();
       input = reader->GetOutput();
+      if (input->GetNumberOfPoints() == 0)
+      {
+        std::fprintf(
+          stderr, "asm_profile: no points read from %s (not a PLY file, or empty)\n", ply);
+        return 1;
+      }
     }
     else
     {
@@ -397,6 +419,11 @@ int main(int argc, char* argv[])
         if (dump && r == runs - 1)
         {
           std::FILE* f = std::fopen(dump, "w");
+          if (!f)
+          {
+            std::fprintf(stderr, "asm_profile: cannot write %s\n", dump);
+            return 1;
+          }
           vtkDataArray* oid = out->GetPointData()->GetArray("vtkOriginalPointIds");
           vtkDataArray* key = out->GetPointData()->GetArray("KeyPoint");
           vtkDataArray* mc = out->GetPointData()->GetArray("MeanCurvature");

@@ -158,6 +158,12 @@ TEST(BenchmarkData, SyntheticShapesAreSeededAndOnTheirSurface)
   EXPECT_EQ(asmbench::ParseCount("14M"), 14000000);
   EXPECT_EQ(asmbench::ParseCount("100k"), 100000);
   EXPECT_EQ(asmbench::ParseCount("x"), -1);
+  EXPECT_EQ(asmbench::ParseCount("0"), -1);
+  EXPECT_EQ(asmbench::ParseCount("1e12"), -2); // more than MaxPointCount
+  EXPECT_EQ(
+    asmbench::ParseFractionList("--fractions", "0.05,1"), std::vector<double>({ 0.05, 1.0 }));
+  EXPECT_THROW(asmbench::ParseFractionList("--fractions", "0.05,0.05"), asmbench::UsageError);
+  EXPECT_THROW(asmbench::ParseIntegerList("--threads", ",", 1), asmbench::UsageError);
 }
 
 TEST(BenchmarkMethods, SearchScaleFindsTheCount)

@@ -66,9 +66,11 @@ TEST(BenchmarkSettings, VariantsAreParsed)
   EXPECT_TRUE(config.Variant);
   ASSERT_TRUE(ParseAsmVariant("literal:Mode=paper,Alpha=0.25", config, error)) << error;
   EXPECT_EQ(config.Mode, AsmMode::Paper);
-  EXPECT_FALSE(ParseAsmVariant("FillHoles=0", config, error));             // no name
-  EXPECT_FALSE(ParseAsmVariant(":FillHoles=0", config, error));            // empty name
-  EXPECT_FALSE(ParseAsmVariant("ASM default:FillHoles=0", config, error)); // a standard name
+  EXPECT_FALSE(ParseAsmVariant("FillHoles=0", config, error));              // no name
+  EXPECT_FALSE(ParseAsmVariant(":FillHoles=0", config, error));             // empty name
+  EXPECT_FALSE(ParseAsmVariant("ASM default:FillHoles=0", config, error));  // a standard name
+  EXPECT_FALSE(ParseAsmVariant("vtkVoxelGrid:FillHoles=0", config, error)); // a peer's name
+  EXPECT_FALSE(ParseAsmVariant("CGAL grid:FillHoles=0", config, error));
   EXPECT_FALSE(ParseAsmVariant("x:FillHoles=maybe", config, error));
   // The programs' --asm: appended once per name.
   std::vector<AsmConfig> configs;
