@@ -422,6 +422,23 @@ bool CheckInputSpec(const std::string& spec, std::string& error)
   return true;
 }
 
+std::string CheckInputSpecs(
+  const std::vector<std::string>& inputs, const std::vector<std::string>& extra)
+{
+  std::string error;
+  for (const auto* list : { &inputs, &extra })
+  {
+    for (const std::string& spec : *list)
+    {
+      if (!CheckInputSpec(spec, error))
+      {
+        return error;
+      }
+    }
+  }
+  return "";
+}
+
 Input MakeInput(const std::string& spec)
 {
   const std::size_t colon = spec.find(':');

@@ -65,6 +65,11 @@ Input MakeInput(const std::string& spec);
 /// before any work.
 bool CheckInputSpec(const std::string& spec, std::string& error);
 
+/// CheckInputSpec on `inputs` then `extra`: the first refusal's message, or
+/// "" when every spec can be an input.
+std::string CheckInputSpecs(
+  const std::vector<std::string>& inputs, const std::vector<std::string>& extra);
+
 /// Leaves out the points of `input` with a NaN or infinite coordinate (a
 /// copy of the others replaces input.Data when there are any); returns how
 /// many were left out.

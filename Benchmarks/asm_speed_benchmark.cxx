@@ -304,15 +304,10 @@ int main(int argc, char* argv[])
         }
       }
     }
-    std::vector<std::string> specs = inputs;
-    specs.insert(specs.end(), extra.begin(), extra.end());
-    for (const std::string& spec : specs)
+    const std::string badInput = CheckInputSpecs(inputs, extra);
+    if (!badInput.empty())
     {
-      std::string error;
-      if (!CheckInputSpec(spec, error))
-      {
-        throw UsageError("input: " + error);
-      }
+      throw UsageError("input: " + badInput);
     }
   }
   catch (const UsageError& e)
