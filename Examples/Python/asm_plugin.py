@@ -38,9 +38,15 @@ def require_file(path, what="input"):
         sys.exit("%s %s: not readable" % (what, path))
 
 
-def require_writable(path):
-    """Exit with a message unless path's directory exists and is writable."""
+def require_writable(path, create=False):
+    """Exit with a message unless path's directory exists (is made, with `create`, as ParaView's
+    writers make it) and is writable."""
     directory = os.path.dirname(os.path.abspath(path))
+    if create:
+        try:
+            os.makedirs(directory, exist_ok=True)
+        except OSError as error:
+            sys.exit("output %s: cannot make directory %s (%s)" % (path, directory, error.strerror))
     if not os.path.isdir(directory):
         sys.exit("output %s: directory %s does not exist" % (path, directory))
     if not os.access(directory, os.W_OK):

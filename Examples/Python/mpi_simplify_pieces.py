@@ -22,8 +22,9 @@ Prints N, N_s, the processes, the time of the simplification and the
 figures on process 0. The plugin is found as the other examples find it
 (--plugin, $ASM_PLUGIN, $PV_PLUGIN_PATH, the build tree).
 
-A missing input, input piece or output directory, an input with no points,
-a --fraction outside (0, 1] or --points below 1, and an empty result stop it
+A missing input or input piece, an output directory that cannot be made,
+an input with no points, a --fraction outside (0, 1] or --points below 1,
+and an empty result stop it
 with a message and a non-zero exit status before anything is written
 (mpiexec then stops the other processes, which may print a SIGTERM trace).
 """
@@ -69,7 +70,7 @@ args = parser.parse_args()
 # Every check comes before the pipeline: an error inside it on process 0 would leave the other
 # processes waiting in a collective (a hang); sys.exit here ends the whole run.
 require_file(args.input)
-require_writable(args.output)
+require_writable(args.output, create=True)  # (SaveData makes the directories of a .pvtp)
 if args.split:
     if not args.output.endswith(PARTITIONED):
         parser.error("with --split the output must be a .pvtp or .pvtu: %s" % args.output)

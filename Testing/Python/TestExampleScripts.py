@@ -174,6 +174,8 @@ if MPIEXEC:
     check("pieces: --split to a .vtp", pieces + ["--split", "../in/kitten.ply", "m.vtp"], work, "nonzero",
           r"\.pvtp or \.pvtu", ["m.vtp"])
     check("pieces: --split", pieces + ["--split", "../in/kitten.ply", "k.pvtp"], work, 0, r"5210 points into 2 pieces")
+    check("pieces: --split into a new directory", pieces + ["--split", "../in/kitten.ply", "new/k.pvtp"], work, 0,
+          r"5210 points into 2 pieces")
     check("pieces: --points 0", pieces + ["k.pvtp", "s.pvtp", "--points", "0"], work, "nonzero", r"--points",
           ["s.pvtp"])
     check("pieces: empty result", pieces + ["k.pvtp", "s.pvtp", "--fraction", "1e-5"], work, "nonzero",
